@@ -4,18 +4,29 @@
 //! * [`modal`]: the [`ModalBasis`] trait shared by analytic and finite-element modes;
 //! * [`damping`]: modal damping ratios and Rayleigh damping;
 //! * [`quadrature`]: Gauss–Legendre and composite Simpson rules;
+//! * [`loads`]: modal point and distributed loads, quasi-static response;
+//! * [`moving`]: moving forces and axle trains, time histories and amplification factors;
+//! * [`closed_form`]: Frýba's series for a moving force on a simply supported beam;
 //! * [`sdof`]: the exact piecewise-linear (Nigam–Jennings-type) modal step.
 
 pub mod analytic;
+pub mod closed_form;
 pub mod damping;
 pub mod error;
+pub mod loads;
 pub mod modal;
+pub mod moving;
 pub mod quadrature;
 pub mod sdof;
 
 pub use analytic::{AnalyticBeam, Support, UniformBeam};
 pub use damping::ModalDamping;
 pub use error::BeamError;
+pub use loads::DistributedLoadProjector;
 pub use modal::{Derivative, ModalBasis};
+pub use moving::{
+    Axle, ModalIntegrator, MovingLoadResponse, MovingLoadSettings, MovingLoads,
+    simulate_moving_loads,
+};
 pub use quadrature::{Quadrature, QuadratureRule};
 pub use sdof::PiecewiseLinearSdof;
