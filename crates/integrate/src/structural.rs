@@ -1,0 +1,56 @@
+//! Second-order structural systems `M q'' + C q' + f_int(q) = f_ext(t)` and their time
+//! integrators (dynamics.md §3.4, §3.5).
+//!
+//! # Problem
+//! A [`StructuralSystem`] provides a constant mass matrix `M`, an optional constant damping
+//! matrix `C`, a (possibly nonlinear) internal force `f_int(q)` with an optional tangent
+//! stiffness `K_t = ∂f_int/∂q` (finite differences otherwise) and an external load `f_ext(t)`.
+//! [`LinearStructure`] is a ready-made linear system `f_int = K q`.
+//!
+//! # Methods ([`StructuralMethod`])
+//! | method | kind | order | source |
+//! |---|---|---|---|
+//! | Störmer–Verlet (velocity form) | explicit | 2 | Hairer, Lubich & Wanner, *Geometric Numerical Integration* (2006) §I.1.4 |
+//! | leapfrog (kick–drift–kick, half-step damping) | explicit | 2 (1 in the damping term) | idem; explicit FE codes |
+//! | central difference = Newmark β = 0, γ = ½ | explicit | 2 | Newmark (1959) |
+//! | Newmark-β (average acceleration by default) | implicit | 2 if γ = ½, else 1 | Newmark (1959), dynamics.md §3.5 |
+//! | HHT-α, α ∈ [−1/3, 0] | implicit | 2 | Hilber, Hughes & Taylor (1977) |
+//! | generalized-α by ρ∞ ∈ [0, 1] | implicit | 2 | Chung & Hulbert (1993) |
+//! | backward Euler (second-order form) | implicit | 1 | the project's founding talk (seed) |
+//!
+//! # The step equation
+//! Every implicit scheme is written in one form (the generalized-α form of Chung & Hulbert,
+//! with backward Euler as a special predictor). For the step `n → n+1` of size Δt:
+//!
+//! ```text
+//! q_{n+1} = q̃ + c_qa · a_{n+1},          v_{n+1} = ṽ + c_va · a_{n+1}
+//! M[(1−α_m) a_{n+1} + α_m a_n] + C[(1−α_f) v_{n+1} + α_f v_n]
+//!     + (1−α_f) f_int(q_{n+1}) + α_f f_int(q_n) = f_ext(t_{n+1−α_f})
+//! ```
+//!
+//! with, for the α family, `q̃ = q_n + Δt v_n + Δt²(½−β) a_n`, `ṽ = v_n + Δt(1−γ) a_n`,
+//! `c_qa = βΔt²`, `c_va = γΔt`, and for backward Euler `q̃ = q_n + Δt v_n`, `ṽ = v_n`,
+//! `c_qa = Δt²`, `c_va = Δt`, `α_m = α_f = 0` (so `q_{n+1} = q_n + Δt v_{n+1}`,
+//! `v_{n+1} = v_n + Δt a_{n+1}`).
+//! Taking the displacement `q_{n+1}` as the unknown, the Jacobian of the balance equation is
+//! `K_eff = c_M M + c_C C + c_K K_t` with `c_M = (1−α_m)/c_qa`, `c_C = (1−α_f) c_va/c_qa`,
+//! `c_K = 1−α_f`.
+//!
+//! [`StructuralStepper::step_equation`] returns these numbers ([`StepEquation`]), and
+//! [`StructuralStepper::finish_step`] applies the corrector once an outside solver (the
+//! vehicle–bridge coupling, dynamics.md §4.2, `A·x = r + b·F` with Sherman–Morrison) has found
+//! `q_{n+1}`. The built-in [`StructuralStepper::step`] solves the same equation by Newton's method
+//! and calls the same corrector, so both paths share one implementation of the formulas.
+
+mod linalg;
+mod linear;
+mod method;
+mod step_equation;
+mod stepper;
+mod system;
+
+pub use linear::LinearStructure;
+pub use method::StructuralMethod;
+pub use step_equation::StepEquation;
+pub use stepper::{NewtonOptions, StructuralStepper};
+pub use system::StructuralSystem;

@@ -1,0 +1,115 @@
+//! The nonlinear equation of one implicit step, in a form an outside solver can use.
+
+use faer::{MatMut, MatRef};
+
+/// The equation of one implicit step `n → n+1`, with the displacement `q_{n+1}` as unknown
+/// (module documentation of [`structural`](super); Chung & Hulbert 1993 for the α form):
+///
+/// ```text
+/// a_{n+1} = (q_{n+1} − q̃)/c_qa,   v_{n+1} = ṽ + c_va · a_{n+1}
+/// R(q_{n+1}) = (1−α_m) M a_{n+1} + (1−α_f) [C v_{n+1} + f_int(q_{n+1})] + h − f_ext(t_force) = 0
+/// h = α_m M a_n + α_f [C v_n + f_int(q_n)]
+/// ∂R/∂q_{n+1} = K_eff = c_M M + c_C C + c_K K_t
+/// ```
+///
+/// An outside solver (the vehicle–bridge coupling of dynamics.md §4.2) adds its own forces to
+/// `f_ext` (weighted consistently, e.g. `(1−α_f) F_{n+1} + α_f F_n`), solves `R = 0` for
+/// `q_{n+1}` and hands it to [`StructuralStepper::finish_step`](super::StructuralStepper::finish_step).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct StepEquation {
+    /// `t_n`.
+    pub t_old: f64,
+    /// Step size Δt.
+    pub dt: f64,
+    /// `t_{n+1} = t_n + Δt`.
+    pub t_new: f64,
+    /// Time of the load, `t_{n+1−α_f} = t_{n+1} − α_f Δt`.
+    pub t_force: f64,
+    /// Displacement predictor `q̃` (`q_{n+1}` when `a_{n+1} = 0`).
+    pub q_pred: Vec<f64>,
+    /// Velocity predictor `ṽ`.
+    pub v_pred: Vec<f64>,
+    /// `c_qa` in `q_{n+1} = q̃ + c_qa a_{n+1}`: `βΔt²` (α family) or `Δt²` (backward Euler).
+    pub displacement_per_acceleration: f64,
+    /// `c_va` in `v_{n+1} = ṽ + c_va a_{n+1}`: `γΔt` (α family) or `Δt` (backward Euler).
+    pub velocity_per_acceleration: f64,
+    /// Inertia weight α_m of the old acceleration.
+    pub alpha_m: f64,
+    /// Force weight α_f of the old state (damping, internal and external forces).
+    pub alpha_f: f64,
+    /// History force `h = α_m M a_n + α_f [C v_n + f_int(q_n)]`.
+    pub history_force: Vec<f64>,
+    /// `c_M = (1 − α_m)/c_qa`.
+    pub mass_coefficient: f64,
+    /// `c_C = (1 − α_f) c_va/c_qa`.
+    pub damping_coefficient: f64,
+    /// `c_K = 1 − α_f`.
+    pub stiffness_coefficient: f64,
+}
+
+impl StepEquation {
+    /// `a_{n+1} = (q_{n+1} − q̃)/c_qa` for entry `i`.
+    pub fn acceleration(&self, i: usize, q_new_i: f64) -> f64 {
+        (q_new_i - self.q_pred[i]) / self.displacement_per_acceleration
+    }
+
+    /// `v_{n+1} = ṽ + c_va a_{n+1}` for entry `i`.
+    pub fn velocity(&self, i: usize, q_new_i: f64) -> f64 {
+        self.v_pred[i] + self.velocity_per_acceleration * self.acceleration(i, q_new_i)
+    }
+
+    /// Writes `v_{n+1}` and `a_{n+1}` implied by `q_{n+1}`.
+    pub fn kinematics(&self, q_new: &[f64], v_new: &mut [f64], a_new: &mut [f64]) {
+        for (i, &q) in q_new.iter().enumerate() {
+            a_new[i] = self.acceleration(i, q);
+            v_new[i] = self.v_pred[i] + self.velocity_per_acceleration * a_new[i];
+        }
+    }
+
+    /// The residual `R(q_{n+1})` of the balance equation, given `f_int(q_{n+1})` and the load
+    /// `f_ext(t_force)`. No allocation: the accelerations and velocities are formed on the fly.
+    pub fn residual(
+        &self,
+        mass: MatRef<'_, f64>,
+        damping: Option<MatRef<'_, f64>>,
+        q_new: &[f64],
+        f_int_new: &[f64],
+        f_ext: &[f64],
+        out: &mut [f64],
+    ) {
+        let w_inertia = 1.0 - self.alpha_m;
+        let w_force = 1.0 - self.alpha_f;
+        for (i, r) in out.iter_mut().enumerate() {
+            let inertia: f64 = (0..q_new.len())
+                .map(|j| mass[(i, j)] * self.acceleration(j, q_new[j]))
+                .sum();
+            let damping_force: f64 = damping.map_or(0.0, |c| {
+                (0..q_new.len())
+                    .map(|j| c[(i, j)] * self.velocity(j, q_new[j]))
+                    .sum()
+            });
+            *r = w_inertia * inertia
+                + w_force * (damping_force + f_int_new[i])
+                + self.history_force[i]
+                - f_ext[i];
+        }
+    }
+
+    /// Writes the effective stiffness `K_eff = c_M M + c_C C + c_K K_t` into `out`.
+    pub fn effective_stiffness(
+        &self,
+        mass: MatRef<'_, f64>,
+        damping: Option<MatRef<'_, f64>>,
+        tangent: MatRef<'_, f64>,
+        mut out: MatMut<'_, f64>,
+    ) {
+        for j in 0..out.ncols() {
+            for i in 0..out.nrows() {
+                let c = damping.map_or(0.0, |c| c[(i, j)]);
+                out[(i, j)] = self.mass_coefficient * mass[(i, j)]
+                    + self.damping_coefficient * c
+                    + self.stiffness_coefficient * tangent[(i, j)];
+            }
+        }
+    }
+}
