@@ -2,6 +2,7 @@
 //!
 //! * [`analytic`]: exact modes of uniform beams (SS, CC, cantilever, CP, FF) with stable shapes;
 //! * [`modal`]: the [`ModalBasis`] trait shared by analytic and finite-element modes;
+//! * [`fe`]: Hermite finite-element beams (stepped sections, multi-span, bearings, masses);
 //! * [`damping`]: modal damping ratios and Rayleigh damping;
 //! * [`quadrature`]: Gauss–Legendre and composite Simpson rules;
 //! * [`loads`]: modal point and distributed loads, quasi-static response;
@@ -13,6 +14,7 @@ pub mod analytic;
 pub mod closed_form;
 pub mod damping;
 pub mod error;
+pub mod fe;
 pub mod loads;
 pub mod modal;
 pub mod moving;
@@ -22,6 +24,7 @@ pub mod sdof;
 pub use analytic::{AnalyticBeam, Support, UniformBeam};
 pub use damping::ModalDamping;
 pub use error::BeamError;
+pub use fe::{FeBeam, FeModes, PointMass, PointSupport, Section, StaticDeflection, SupportKind};
 pub use loads::DistributedLoadProjector;
 pub use modal::{Derivative, ModalBasis};
 pub use moving::{
