@@ -1,0 +1,78 @@
+//! Errors of the half-space contact solver.
+
+use thiserror::Error;
+
+use crate::solution::NormalSolution;
+
+/// Failure of a contact computation. Invalid-input variants name the offending parameter.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum ContactError {
+    /// A parameter is out of its physical or numerical range.
+    #[error("invalid `{name}` = {value}: {reason}")]
+    InvalidParameter {
+        name: &'static str,
+        value: f64,
+        reason: &'static str,
+    },
+    /// Array sizes do not match the grid.
+    #[error("`{name}` has {found} values, the grid has {expected} elements")]
+    SizeMismatch {
+        name: &'static str,
+        expected: usize,
+        found: usize,
+    },
+    /// Both bodies are rigid: the contact problem has no elastic solution.
+    #[error("both bodies are rigid: at least one must be elastic")]
+    BothRigid,
+    /// No element of the potential contact area comes into contact.
+    #[error("no contact: the prescribed load gives no element in contact ({reason})")]
+    NoContact { reason: &'static str },
+    /// The iterative solver stopped at its iteration limit. The last iterate is kept so a
+    /// caller can inspect or report it, but it must not be used as an answer.
+    #[error("NormCG did not converge in {iterations} iterations (relative change {residual:e})")]
+    NotConverged {
+        iterations: usize,
+        residual: f64,
+        last: Box<NormalSolution>,
+    },
+    /// The linearised solve for dF_n/dδ stopped at its iteration limit.
+    #[error(
+        "sensitivity solve did not converge in {iterations} iterations (relative residual {residual:e})"
+    )]
+    SensitivityNotConverged { iterations: usize, residual: f64 },
+    /// The FFT operator reported an internal inconsistency (should not happen).
+    #[error("FFT failure: {0}")]
+    Fft(String),
+}
+
+/// Check that `value` is finite and strictly positive.
+pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64, ContactError> {
+    if !value.is_finite() {
+        return Err(ContactError::InvalidParameter {
+            name,
+            value,
+            reason: "must be a finite number",
+        });
+    }
+    if value <= 0.0 {
+        return Err(ContactError::InvalidParameter {
+            name,
+            value,
+            reason: "must be positive",
+        });
+    }
+    Ok(value)
+}
+
+/// Check that `value` is finite.
+pub(crate) fn finite(name: &'static str, value: f64) -> Result<f64, ContactError> {
+    if !value.is_finite() {
+        return Err(ContactError::InvalidParameter {
+            name,
+            value,
+            reason: "must be a finite number",
+        });
+    }
+    Ok(value)
+}

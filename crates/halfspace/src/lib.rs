@@ -1,0 +1,45 @@
+//! Elastic half-space normal contact, solved the way CONTACT solves it.
+//!
+//! Two elastic (or one rigid) bodies touch over a small, almost flat area, so each is
+//! modelled as an elastic half-space (contact.md §2.1, §3). Given the undeformed gap h(x, y)
+//! on a grid of rectangular elements (the potential contact area) and the approach δ or the
+//! total force F_n, [`NormalSolver`] finds the pressure p ≥ 0 with
+//! e = h − δ + A p = 0 in contact and e > 0, p = 0 outside, where A holds Love's influence
+//! coefficients for piecewise-constant pressure ([`influence`]). Products with A are
+//! zero-padded FFT convolutions ([`convolution`]); the solver is the bound-constrained
+//! conjugate-gradient method NormCG with an FFT preconditioner ([`normcg`]).
+//!
+//! Units are SI: metres, newtons, pascals. Pressure is positive in compression; the
+//! approach is positive when the undeformed bodies overlap. Grids store element (ix, iy) at
+//! index `iy * nx + ix`.
+//!
+//! ```
+//! use halfspace::{GapShape, Grid, Material, NormalLoad, NormalSolver, SolverOptions, auto_grid};
+//! let material = Material::identical(210e9, 0.3)?;
+//! let shape = GapShape::Sphere { radius: 0.01 };
+//! let load = NormalLoad::Force(1000.0);
+//! let grid = auto_grid(&shape, &material, load, 48)?;
+//! let mut solver = NormalSolver::new(grid, material)?;
+//! let solution = solver.solve(&shape.sample(&grid)?, load, &SolverOptions::default())?;
+//! let hertz = shape.hertz(&material, load).unwrap();
+//! assert!((solution.approach / hertz.approach - 1.0).abs() < 0.01);
+//! # Ok::<(), halfspace::ContactError>(())
+//! ```
+
+pub mod convolution;
+pub mod error;
+pub mod gap;
+pub mod grid;
+pub mod hertz;
+pub mod influence;
+pub mod material;
+pub mod normcg;
+pub mod solution;
+
+pub use error::ContactError;
+pub use gap::{AUTO_GRID_ELEMENTS, AUTO_GRID_MARGIN, GapShape, auto_grid};
+pub use grid::Grid;
+pub use hertz::{Hertz, LineHertz, curvatures_from_radii};
+pub use material::{Body, Material};
+pub use normcg::{NormalLoad, NormalSolver, SolverOptions};
+pub use solution::NormalSolution;

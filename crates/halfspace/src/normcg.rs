@@ -1,0 +1,740 @@
+//! NormCG: the bound-constrained conjugate-gradient solver of the normal contact problem.
+//!
+//! Find p ≥ 0 on the grid with (contact.md §3.4; Vollebregt, J. Comput. Phys. 257A (2014) 333)
+//!
+//! ```text
+//! e_I = h_I − δ + Σ_J A_IJ p_J = 0   and p_I ≥ 0   on the contact set C,
+//! e_I > 0                            and p_I = 0   outside C,
+//! ```
+//!
+//! i.e. minimise ½ pᵀA p + pᵀ(h − δ) subject to p ≥ 0. Each iteration is a preconditioned
+//! conjugate-gradient step restricted to C, followed by a projection:
+//!
+//! 1. r = −e on C; z = M r masked to C, with M the FFT preconditioner (the convolution
+//!    whose spectrum is the reciprocal of A's, an approximate inverse of A);
+//! 2. Polak–Ribière direction v = z + β v, β = max(0, zᵀ(r − r_prev)/(z_prevᵀ r_prev)),
+//!    restarted (β = 0) whenever C changed;
+//! 3. q = A v, α = rᵀv / vᵀq, p ← p + α v, u ← u + α q;
+//! 4. projection: elements with p < 0 leave C (p = 0); elements outside C with e < 0
+//!    enter C. After a projection u = A p is recomputed exactly.
+//!
+//! With a prescribed total force F the approach δ is a Lagrange multiplier for
+//! ΔA Σ p = F. It is handled by deflation of the constant: δ = mean_C(h + u) makes the
+//! residual mean-free, z and v are made mean-free on C so that the force is conserved by
+//! every update, and the pressure is rescaled to F after a projection.
+//!
+//! **Stopping rule.** Stop when an iteration leaves C unchanged and
+//! ‖Δp‖_rms ≤ tol · ‖p‖_rms (CONTACT's criterion, §3.7), and a final exact recomputation of
+//! u confirms that no element outside C penetrates (e ≥ −tol·|δ|... see `penetration_tol`).
+//! Reaching `max_iter` first returns [`ContactError::NotConverged`] with the iteration
+//! count, the last relative change and the last iterate.
+//!
+//! **Sensitivity.** dF_n/dδ is computed from the problem linearised on the converged
+//! contact set: solve A_CC x = 1_C (unit increase of the approach, contact set frozen) by
+//! preconditioned CG; then dF_n/dδ = ΔA Σ x. Exact for a set that does not change under a
+//! small change of δ, i.e. the one-sided derivative of the discrete problem.
+
+use crate::convolution::{FftConvolution, KernelSpectrum};
+use crate::error::{ContactError, positive};
+use crate::grid::Grid;
+use crate::influence::circulant_kernel;
+use crate::material::Material;
+use crate::solution::NormalSolution;
+
+/// The normal load: approach or total force prescribed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum NormalLoad {
+    /// Approach δ [m] prescribed; the force is computed.
+    Approach(f64),
+    /// Total normal force F_n [N] prescribed; the approach is computed.
+    Force(f64),
+}
+
+/// Controls of the NormCG iteration.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolverOptions {
+    /// Relative tolerance on ‖Δp‖_rms / ‖p‖_rms (default 1e-8).
+    pub tol: f64,
+    /// Iteration limit (default 200).
+    pub max_iter: usize,
+    /// Compute dF_n/dδ after convergence (default true).
+    pub sensitivity: bool,
+    /// Relative residual tolerance of the sensitivity solve (default 1e-10).
+    pub sensitivity_tol: f64,
+    /// Start from the previous solution of this solver when there is one (default true).
+    pub warm_start: bool,
+}
+
+impl Default for SolverOptions {
+    fn default() -> Self {
+        SolverOptions {
+            tol: 1e-8,
+            max_iter: 200,
+            sensitivity: true,
+            sensitivity_tol: 1e-10,
+            warm_start: true,
+        }
+    }
+}
+
+impl SolverOptions {
+    fn validate(&self) -> Result<(), ContactError> {
+        positive("tol", self.tol)?;
+        positive("sensitivity_tol", self.sensitivity_tol)?;
+        if self.max_iter == 0 {
+            return Err(ContactError::InvalidParameter {
+                name: "max_iter",
+                value: 0.0,
+                reason: "must be at least 1",
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Work vectors of one solve, allocated once per solver.
+#[derive(Debug)]
+struct Workspace {
+    p: Vec<f64>,
+    u: Vec<f64>,
+    r: Vec<f64>,
+    r_prev: Vec<f64>,
+    z: Vec<f64>,
+    v: Vec<f64>,
+    q: Vec<f64>,
+    active: Vec<bool>,
+}
+
+impl Workspace {
+    fn new(n: usize) -> Self {
+        Workspace {
+            p: vec![0.0; n],
+            u: vec![0.0; n],
+            r: vec![0.0; n],
+            r_prev: vec![0.0; n],
+            z: vec![0.0; n],
+            v: vec![0.0; n],
+            q: vec![0.0; n],
+            active: vec![false; n],
+        }
+    }
+}
+
+/// Solver of the normal contact problem on one grid and material pair.
+///
+/// Owns the FFT plans, the spectra of A_nn and of the preconditioner (computed once), and
+/// all work vectors; repeated solves (time stepping) allocate only their result, and start
+/// from the previous pressure when `warm_start` is set.
+#[derive(Debug)]
+pub struct NormalSolver {
+    grid: Grid,
+    material: Material,
+    conv: FftConvolution,
+    influence: KernelSpectrum,
+    preconditioner: KernelSpectrum,
+    work: Workspace,
+    previous: Option<Vec<f64>>,
+    previous_sensitivity: Option<Vec<f64>>,
+    convolutions: usize,
+}
+
+impl NormalSolver {
+    /// Tabulate the influence kernel, plan the FFTs and build the preconditioner.
+    pub fn new(grid: Grid, material: Material) -> Result<Self, ContactError> {
+        let grid = Grid::new(grid.nx, grid.ny, grid.dx, grid.dy, grid.x0, grid.y0)?;
+        positive("G", material.g)?;
+        let conv = FftConvolution::new(grid.nx, grid.ny);
+        let influence = conv.kernel_spectrum(&circulant_kernel(&material, &grid));
+        let preconditioner = influence
+            .reciprocal(conv.normalisation())
+            .ok_or_else(|| ContactError::Fft("influence spectrum has a zero coefficient".into()))?;
+        Ok(NormalSolver {
+            grid,
+            material,
+            conv,
+            influence,
+            preconditioner,
+            work: Workspace::new(grid.len()),
+            previous: None,
+            previous_sensitivity: None,
+            convolutions: 0,
+        })
+    }
+
+    /// The grid.
+    pub fn grid(&self) -> &Grid {
+        &self.grid
+    }
+
+    /// The combined material.
+    pub fn material(&self) -> &Material {
+        &self.material
+    }
+
+    /// Number of FFT convolutions done so far (statistics for benchmarks).
+    pub fn convolutions(&self) -> usize {
+        self.convolutions
+    }
+
+    /// Forget the previous solution (the next solve starts cold).
+    pub fn reset(&mut self) {
+        self.previous = None;
+        self.previous_sensitivity = None;
+    }
+
+    /// Use `pressure` as the starting iterate of the next solve.
+    pub fn set_initial_pressure(&mut self, pressure: &[f64]) -> Result<(), ContactError> {
+        self.check_len("pressure", pressure.len())?;
+        self.previous = Some(pressure.iter().map(|&p| p.max(0.0)).collect());
+        Ok(())
+    }
+
+    /// Surface displacement u = A p for a given pressure field (one FFT convolution).
+    pub fn displacement(&mut self, pressure: &[f64], out: &mut [f64]) -> Result<(), ContactError> {
+        self.check_len("pressure", pressure.len())?;
+        self.check_len("displacement", out.len())?;
+        self.conv.apply(&self.influence, pressure, out);
+        self.convolutions += 1;
+        Ok(())
+    }
+
+    fn check_len(&self, name: &'static str, found: usize) -> Result<(), ContactError> {
+        if found != self.grid.len() {
+            return Err(ContactError::SizeMismatch {
+                name,
+                expected: self.grid.len(),
+                found,
+            });
+        }
+        Ok(())
+    }
+
+    /// Solve the normal contact problem for the undeformed gap `gap` (per element, [m];
+    /// `f64::INFINITY` excludes an element) under `load`.
+    pub fn solve(
+        &mut self,
+        gap: &[f64],
+        load: NormalLoad,
+        options: &SolverOptions,
+    ) -> Result<NormalSolution, ContactError> {
+        options.validate()?;
+        self.check_len("gap", gap.len())?;
+        if gap.iter().any(|h| h.is_nan() || *h == f64::NEG_INFINITY) {
+            return Err(ContactError::InvalidParameter {
+                name: "gap",
+                value: f64::NAN,
+                reason: "must be finite (or +infinity to exclude an element)",
+            });
+        }
+        let target_force = match load {
+            NormalLoad::Approach(d) => {
+                crate::error::finite("approach", d)?;
+                None
+            }
+            NormalLoad::Force(f) => {
+                crate::error::finite("force", f)?;
+                if f < 0.0 {
+                    return Err(ContactError::InvalidParameter {
+                        name: "force",
+                        value: f,
+                        reason: "a normal force cannot be tensile",
+                    });
+                }
+                Some(f)
+            }
+        };
+        if let Some(f) = target_force
+            && f == 0.0
+        {
+            let hmin = gap.iter().copied().fold(f64::INFINITY, f64::min);
+            return Ok(NormalSolution::empty(self.grid, gap, hmin));
+        }
+        let initial = if options.warm_start {
+            self.previous.take()
+        } else {
+            None
+        };
+        let outcome = self.iterate(gap, load, target_force, initial, options);
+        let mut solution = outcome?;
+        if options.sensitivity && solution.elements_in_contact > 0 {
+            let (dfn, its) = self.sensitivity(
+                &solution.in_contact,
+                options.sensitivity_tol,
+                options.max_iter,
+            )?;
+            solution.dfn_dapproach = Some(dfn);
+            solution.sensitivity_iterations = its;
+        } else if !options.sensitivity {
+            solution.dfn_dapproach = None;
+        }
+        self.previous = Some(solution.pressure.clone());
+        Ok(solution)
+    }
+
+    /// The NormCG iteration (see the module documentation).
+    fn iterate(
+        &mut self,
+        gap: &[f64],
+        load: NormalLoad,
+        target_force: Option<f64>,
+        initial: Option<Vec<f64>>,
+        options: &SolverOptions,
+    ) -> Result<NormalSolution, ContactError> {
+        let area = self.grid.element_area();
+        let n = self.grid.len();
+        let force_mode = target_force.is_some();
+        let target_sum = target_force.map(|f| f / area);
+
+        // Initial iterate.
+        {
+            let w = &mut self.work;
+            match initial {
+                Some(p0) if p0.len() == n => w.p.copy_from_slice(&p0),
+                _ => w.p.fill(0.0),
+            }
+        }
+        if let Some(sum) = target_sum {
+            if self.work.p.iter().sum::<f64>() <= 0.0 {
+                initial_force_guess(
+                    &self.grid,
+                    &self.material,
+                    gap,
+                    sum * area,
+                    &mut self.work.p,
+                );
+            }
+            let s: f64 = self.work.p.iter().sum();
+            if s <= 0.0 {
+                return Err(ContactError::NoContact {
+                    reason: "no finite gap value to carry the force",
+                });
+            }
+            let scale = sum / s;
+            self.work.p.iter_mut().for_each(|p| *p *= scale);
+        }
+        self.exact_displacement();
+        let mut approach = match load {
+            NormalLoad::Approach(d) => d,
+            NormalLoad::Force(_) => mean_over(&self.work.p, gap, &self.work.u, |p| p > 0.0),
+        };
+        // Initial contact set: loaded elements and penetrating ones.
+        {
+            let w = &mut self.work;
+            for i in 0..n {
+                w.active[i] = w.p[i] > 0.0 || gap[i] - approach + w.u[i] < 0.0;
+            }
+        }
+        if !self.work.active.iter().any(|&a| a) {
+            return Ok(NormalSolution::empty(self.grid, gap, approach));
+        }
+
+        let mut restart = true;
+        let mut rz_prev = 0.0;
+        let mut change = f64::INFINITY;
+        for iteration in 1..=options.max_iter {
+            if force_mode {
+                approach = active_mean(&self.work.active, gap, &self.work.u);
+            }
+            // 1. residual and preconditioned residual on C.
+            {
+                let w = &mut self.work;
+                for i in 0..n {
+                    w.r[i] = if w.active[i] {
+                        approach - gap[i] - w.u[i]
+                    } else {
+                        0.0
+                    };
+                }
+            }
+            self.conv
+                .apply(&self.preconditioner, &self.work.r, &mut self.work.z);
+            self.convolutions += 1;
+            let w = &mut self.work;
+            mask(&mut w.z, &w.active);
+            if force_mode {
+                remove_active_mean(&mut w.z, &w.active);
+            }
+            // 2. Polak–Ribière direction.
+            let rz = dot(&w.r, &w.z);
+            let beta = if restart || rz_prev <= 0.0 {
+                0.0
+            } else {
+                ((rz - dot(&w.z, &w.r_prev)) / rz_prev).max(0.0)
+            };
+            for i in 0..n {
+                w.v[i] = if w.active[i] {
+                    w.z[i] + beta * w.v[i]
+                } else {
+                    0.0
+                };
+            }
+            w.r_prev.copy_from_slice(&w.r);
+            rz_prev = rz;
+            // 3. step along v.
+            self.conv
+                .apply(&self.influence, &self.work.v, &mut self.work.q);
+            self.convolutions += 1;
+            let w = &mut self.work;
+            let vq = masked_dot(&w.v, &w.q, &w.active);
+            let rv = dot(&w.r, &w.v);
+            if vq <= 0.0 || rv == 0.0 {
+                // No descent possible: the residual vanished (exact solution) or round-off.
+                change = 0.0;
+            } else {
+                let alpha = rv / vq;
+                let mut dp2 = 0.0;
+                for i in 0..n {
+                    let dp = alpha * w.v[i];
+                    w.p[i] += dp;
+                    w.u[i] += alpha * w.q[i];
+                    dp2 += dp * dp;
+                }
+                let p2: f64 = w.p.iter().map(|p| p * p).sum();
+                change = if p2 > 0.0 {
+                    (dp2 / p2).sqrt()
+                } else {
+                    f64::INFINITY
+                };
+            }
+            // 4. projection.
+            let clipped = {
+                let w = &mut self.work;
+                let mut clipped = false;
+                for p in w.p.iter_mut() {
+                    if *p < 0.0 {
+                        *p = 0.0;
+                        clipped = true;
+                    }
+                }
+                clipped
+            };
+            if clipped {
+                if let Some(sum) = target_sum {
+                    rescale(&mut self.work.p, sum);
+                }
+                self.exact_displacement();
+            }
+            if force_mode {
+                approach = mean_over(&self.work.p, gap, &self.work.u, |p| p > 0.0);
+            }
+            let changed = self.update_active_set(gap, approach);
+            restart = changed;
+            if !changed && change <= options.tol {
+                // Confirm on an exactly recomputed displacement.
+                self.exact_displacement();
+                if force_mode {
+                    approach = mean_over(&self.work.p, gap, &self.work.u, |p| p > 0.0);
+                }
+                if !self.update_active_set(gap, approach) {
+                    return Ok(self.assemble(gap, approach, iteration, change, true));
+                }
+                restart = true;
+            }
+        }
+        let last = self.assemble(gap, approach, options.max_iter, change, false);
+        Err(ContactError::NotConverged {
+            iterations: options.max_iter,
+            residual: change,
+            last: Box::new(last),
+        })
+    }
+
+    /// u = A p from scratch (removes drift of the incremental updates).
+    fn exact_displacement(&mut self) {
+        self.conv
+            .apply(&self.influence, &self.work.p, &mut self.work.u);
+        self.convolutions += 1;
+    }
+
+    /// New contact set: elements with p > 0, and elements outside the set that penetrate.
+    /// Returns whether the set changed.
+    fn update_active_set(&mut self, gap: &[f64], approach: f64) -> bool {
+        let w = &mut self.work;
+        let mut changed = false;
+        for i in 0..w.p.len() {
+            let now = w.p[i] > 0.0 || (gap[i] - approach + w.u[i] < 0.0 && !w.active[i]);
+            if now != w.active[i] {
+                changed = true;
+                w.active[i] = now;
+            }
+        }
+        changed
+    }
+
+    fn assemble(
+        &self,
+        gap: &[f64],
+        approach: f64,
+        iterations: usize,
+        residual: f64,
+        converged: bool,
+    ) -> NormalSolution {
+        let g = self.grid;
+        let w = &self.work;
+        let area = g.element_area();
+        let mut force_sum = 0.0;
+        let (mut mx, mut my) = (0.0, 0.0);
+        let mut max_pressure: f64 = 0.0;
+        let mut count = 0;
+        for (k, &p) in w.p.iter().enumerate() {
+            if p > 0.0 {
+                let (x, y) = g.centre(k);
+                force_sum += p;
+                mx += p * x;
+                my += p * y;
+                max_pressure = max_pressure.max(p);
+                count += 1;
+            }
+        }
+        let centre = if force_sum > 0.0 {
+            (mx / force_sum, my / force_sum)
+        } else {
+            (g.x0, g.y0)
+        };
+        NormalSolution {
+            grid: g,
+            pressure: w.p.clone(),
+            in_contact: w.p.iter().map(|&p| p > 0.0).collect(),
+            deformed_distance: gap
+                .iter()
+                .zip(&w.u)
+                .map(|(h, u)| h - approach + u)
+                .collect(),
+            displacement: w.u.clone(),
+            normal_force: force_sum * area,
+            approach,
+            max_pressure,
+            contact_area: count as f64 * area,
+            elements_in_contact: count,
+            centre_of_pressure: centre,
+            iterations,
+            residual,
+            converged,
+            dfn_dapproach: None,
+            sensitivity_iterations: 0,
+        }
+    }
+
+    /// dF_n/dδ from A_CC x = 1_C by preconditioned CG (see the module documentation).
+    fn sensitivity(
+        &mut self,
+        in_contact: &[bool],
+        tol: f64,
+        max_iter: usize,
+    ) -> Result<(f64, usize), ContactError> {
+        let n = self.grid.len();
+        let area = self.grid.element_area();
+        let w = &mut self.work;
+        w.active.copy_from_slice(in_contact);
+        // x in w.p's place would destroy the solution; use r/z/v/q and u as scratch, x in r_prev.
+        let x = &mut w.r_prev;
+        match &self.previous_sensitivity {
+            Some(prev) if prev.len() == n => {
+                x.copy_from_slice(prev);
+                mask(x, &w.active);
+            }
+            _ => x.fill(0.0),
+        }
+        // r = 1 − A x on C.
+        self.conv
+            .apply(&self.influence, &self.work.r_prev, &mut self.work.q);
+        self.convolutions += 1;
+        let w = &mut self.work;
+        let count = w.active.iter().filter(|&&a| a).count() as f64;
+        for i in 0..n {
+            w.r[i] = if w.active[i] { 1.0 - w.q[i] } else { 0.0 };
+        }
+        let norm0 = count.sqrt();
+        let mut rz_prev = 0.0;
+        let mut iterations = 0;
+        loop {
+            let w = &self.work;
+            let rnorm = dot(&w.r, &w.r).sqrt();
+            if rnorm <= tol * norm0 {
+                break;
+            }
+            if iterations >= max_iter {
+                return Err(ContactError::SensitivityNotConverged {
+                    iterations,
+                    residual: rnorm / norm0,
+                });
+            }
+            iterations += 1;
+            self.conv
+                .apply(&self.preconditioner, &self.work.r, &mut self.work.z);
+            self.convolutions += 1;
+            let w = &mut self.work;
+            mask(&mut w.z, &w.active);
+            let rz = dot(&w.r, &w.z);
+            let beta = if rz_prev > 0.0 { rz / rz_prev } else { 0.0 };
+            for i in 0..n {
+                w.v[i] = w.z[i] + beta * w.v[i];
+            }
+            rz_prev = rz;
+            self.conv
+                .apply(&self.influence, &self.work.v, &mut self.work.q);
+            self.convolutions += 1;
+            let w = &mut self.work;
+            let alpha = rz / masked_dot(&w.v, &w.q, &w.active);
+            for i in 0..n {
+                w.r_prev[i] += alpha * w.v[i];
+                if w.active[i] {
+                    w.r[i] -= alpha * w.q[i];
+                }
+            }
+        }
+        let w = &self.work;
+        let dfn = area * w.r_prev.iter().sum::<f64>();
+        self.previous_sensitivity = Some(w.r_prev.clone());
+        Ok((dfn, iterations))
+    }
+}
+
+/// Cold-start pressure for a prescribed force: the Hertzian shape p ∝ √(δ_H/2 − (h − h_min))
+/// with δ_H the Hertz approach of the gap's local curvature at its minimum (exact in shape
+/// for a quadratic gap: the overlap at δ/2 is the Hertz ellipse); a uniform pressure on the
+/// lowest part of the gap when the gap has no curvature there (flat punch).
+fn initial_force_guess(grid: &Grid, material: &Material, gap: &[f64], force: f64, p: &mut [f64]) {
+    let (imin, hmin) =
+        gap.iter()
+            .copied()
+            .enumerate()
+            .fold(
+                (0, f64::INFINITY),
+                |(bi, bh), (i, h)| if h < bh { (i, h) } else { (bi, bh) },
+            );
+    if !hmin.is_finite() {
+        return;
+    }
+    let (ix, iy) = (imin % grid.nx, imin / grid.nx);
+    let curvature = |a: Option<f64>, b: Option<f64>, step: f64| -> Option<f64> {
+        match (a, b) {
+            (Some(a), Some(b)) if a.is_finite() && b.is_finite() => {
+                let c = (a + b - 2.0 * hmin) / (2.0 * step * step);
+                (c > 0.0).then_some(c)
+            }
+            (Some(a), None) | (None, Some(a)) if a.is_finite() => {
+                let c = (a - hmin) / (step * step);
+                (c > 0.0).then_some(c)
+            }
+            _ => None,
+        }
+    };
+    let at = |jx: isize, jy: isize| -> Option<f64> {
+        (jx >= 0 && jy >= 0 && (jx as usize) < grid.nx && (jy as usize) < grid.ny)
+            .then(|| gap[jy as usize * grid.nx + jx as usize])
+    };
+    let (ix, iy) = (ix as isize, iy as isize);
+    let ax = if grid.nx > 1 {
+        curvature(at(ix - 1, iy), at(ix + 1, iy), grid.dx)
+    } else {
+        None
+    };
+    let by = if grid.ny > 1 {
+        curvature(at(ix, iy - 1), at(ix, iy + 1), grid.dy)
+    } else {
+        None
+    };
+    let approach = match (ax, by) {
+        (Some(a), Some(b)) => crate::hertz::Hertz::elliptic(a, b, material.e_star, force)
+            .map(|h| h.approach)
+            .ok(),
+        (Some(a), None) if grid.ny == 1 => {
+            // Line contact: a² = 4RF'/(πE*), overlap half-width at δ/2 equals a when δ = a²/R.
+            let r = 0.5 / a;
+            let a2 = 4.0 * r * force / grid.dy / (std::f64::consts::PI * material.e_star);
+            Some(a2 / r)
+        }
+        _ => None,
+    };
+    match approach {
+        Some(d) if d > 0.0 => {
+            for (pi, &h) in p.iter_mut().zip(gap) {
+                *pi = (0.5 * d - (h - hmin)).max(0.0).sqrt();
+            }
+        }
+        _ => {
+            let hmax = gap
+                .iter()
+                .copied()
+                .filter(|h| h.is_finite())
+                .fold(hmin, f64::max);
+            let band = 1e-3 * (hmax - hmin);
+            for (pi, &h) in p.iter_mut().zip(gap) {
+                *pi = if h - hmin <= band { 1.0 } else { 0.0 };
+            }
+        }
+    }
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+fn masked_dot(a: &[f64], b: &[f64], active: &[bool]) -> f64 {
+    a.iter()
+        .zip(b)
+        .zip(active)
+        .filter(|(_, a)| **a)
+        .map(|((x, y), _)| x * y)
+        .sum()
+}
+
+fn mask(x: &mut [f64], active: &[bool]) {
+    for (v, &a) in x.iter_mut().zip(active) {
+        if !a {
+            *v = 0.0;
+        }
+    }
+}
+
+fn remove_active_mean(x: &mut [f64], active: &[bool]) {
+    let (mut s, mut c) = (0.0, 0usize);
+    for (v, &a) in x.iter().zip(active) {
+        if a {
+            s += v;
+            c += 1;
+        }
+    }
+    if c == 0 {
+        return;
+    }
+    let mean = s / c as f64;
+    for (v, &a) in x.iter_mut().zip(active) {
+        if a {
+            *v -= mean;
+        }
+    }
+}
+
+/// Mean of h + u over the elements selected by `select(p)`: the approach that makes the
+/// deformed distance mean-free there.
+fn mean_over(p: &[f64], gap: &[f64], u: &[f64], select: impl Fn(f64) -> bool) -> f64 {
+    let (mut s, mut c) = (0.0, 0usize);
+    for i in 0..p.len() {
+        if select(p[i]) && gap[i].is_finite() {
+            s += gap[i] + u[i];
+            c += 1;
+        }
+    }
+    if c == 0 { 0.0 } else { s / c as f64 }
+}
+
+fn active_mean(active: &[bool], gap: &[f64], u: &[f64]) -> f64 {
+    let (mut s, mut c) = (0.0, 0usize);
+    for i in 0..active.len() {
+        if active[i] {
+            s += gap[i] + u[i];
+            c += 1;
+        }
+    }
+    if c == 0 { 0.0 } else { s / c as f64 }
+}
+
+fn rescale(p: &mut [f64], target_sum: f64) {
+    let s: f64 = p.iter().sum();
+    if s > 0.0 {
+        let f = target_sum / s;
+        p.iter_mut().for_each(|v| *v *= f);
+    }
+}
