@@ -84,6 +84,9 @@ pub enum BeamError {
         /// Size of the eigenproblem.
         size: usize,
     },
+    /// A structural time integrator of the `integrate` crate failed.
+    #[error("time integrator failed: {0}")]
+    Integrator(#[from] integrate::IntegrateError),
     /// More modes were requested than the discrete model has degrees of freedom.
     #[error(
         "requested {requested} modes but the model has only {available} free degrees of freedom"

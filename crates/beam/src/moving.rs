@@ -5,8 +5,15 @@
 //! are sampled at the step times and taken piecewise linear in between; each mode
 //! q_j'' + c_j q_j' + ω_j² q_j = f_j is then advanced with the exact propagator
 //! [`PiecewiseLinearSdof`] (Nigam–Jennings-type recurrence), so the only time-discretisation
-//! error is the linear interpolation of f_j (O(Δt²)). The run lasts until the last axle leaves
-//! the span plus a free-vibration time. Loads and deflections are positive in the same direction.
+//! error is the linear interpolation of f_j (O(Δt²)). Alternatively the modal system
+//! M q'' + C q' + K q = f (diagonal M = diag(m_j), C = diag(m_j c_j), K = diag(m_j ω_j²)) is
+//! integrated by a [`StructuralMethod`] of the `integrate` crate (Newmark-β, HHT-α,
+//! generalized-α, ...), which adds that method's period and amplitude errors (dynamics.md §3.5).
+//! The run lasts until the last axle leaves the span plus a free-vibration time. Loads and
+//! deflections are positive in the same direction.
+
+use faer::{Mat, MatMut, MatRef};
+use integrate::structural::{StructuralMethod, StructuralStepper, StructuralSystem};
 
 use crate::damping::ModalDamping;
 use crate::error::{BeamError, finite, inside_span, non_negative, positive};
@@ -70,11 +77,14 @@ impl MovingLoads {
 }
 
 /// Time integration of the modal equations.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub enum ModalIntegrator {
     /// Exact solution for forcing piecewise linear over each step (see module docs).
     #[default]
     ExactPiecewiseLinear,
+    /// A structural integrator of the `integrate` crate applied to the whole modal system, e.g.
+    /// Newmark average acceleration `StructuralMethod::average_acceleration()`.
+    Structural(StructuralMethod),
 }
 
 /// Settings of a moving-load run.
@@ -236,29 +246,130 @@ impl OutputOperator {
     }
 }
 
-/// Modal forces Σ_(k on span) F_k w_j(x_k(t)) / m_j at time t into `ws.f_next`.
-fn modal_forces_at<B: ModalBasis + ?Sized>(
+/// Modal forces Σ_(k on span) F_k w_j(x_k(t)) · `weights_j` at time t into `out`, using `shapes`
+/// as scratch. Axles off the span contribute nothing.
+fn modal_forces<B: ModalBasis + ?Sized>(
     basis: &B,
     loads: &MovingLoads,
     t: f64,
-    ws: &mut Workspace,
+    weights: &[f64],
+    shapes: &mut [f64],
+    out: &mut [f64],
 ) -> Result<(), BeamError> {
-    ws.f_next.fill(0.0);
+    out.fill(0.0);
     let l = basis.length();
     for axle in &loads.axles {
         let x = loads.speed * t - axle.offset;
         if !(0.0..=l).contains(&x) {
             continue;
         }
-        basis.eval_all(x, Derivative::Shape, &mut ws.shapes)?;
-        for (f, w) in ws.f_next.iter_mut().zip(&ws.shapes) {
+        basis.eval_all(x, Derivative::Shape, shapes)?;
+        for (f, w) in out.iter_mut().zip(shapes.iter()) {
             *f += axle.force * w;
         }
     }
-    for (f, m) in ws.f_next.iter_mut().zip(&ws.inv_mass) {
+    for (f, m) in out.iter_mut().zip(weights) {
         *f *= m;
     }
     Ok(())
+}
+
+/// Modal forces / m_j at time t into `ws.f_next`.
+fn modal_forces_at<B: ModalBasis + ?Sized>(
+    basis: &B,
+    loads: &MovingLoads,
+    t: f64,
+    ws: &mut Workspace,
+) -> Result<(), BeamError> {
+    modal_forces(
+        basis,
+        loads,
+        t,
+        &ws.inv_mass,
+        &mut ws.shapes,
+        &mut ws.f_next,
+    )
+}
+
+/// The diagonal modal system m_j q_j'' + m_j c_j q_j' + m_j ω_j² q_j = f_j(t) as a
+/// [`StructuralSystem`] for the `integrate` steppers (buffers owned, no allocation per call).
+struct ModalSystem<'a, B: ?Sized> {
+    basis: &'a B,
+    loads: &'a MovingLoads,
+    mass: Mat<f64>,
+    damping: Mat<f64>,
+    stiffness: Vec<f64>,
+    unit_weights: Vec<f64>,
+    shapes: Vec<f64>,
+}
+
+impl<'a, B: ModalBasis + ?Sized> ModalSystem<'a, B> {
+    fn new(basis: &'a B, loads: &'a MovingLoads, masses: &[f64], damping: &[f64]) -> Self {
+        let n = masses.len();
+        let omegas = basis.circular_frequencies();
+        Self {
+            basis,
+            loads,
+            mass: Mat::from_fn(n, n, |i, j| if i == j { masses[i] } else { 0.0 }),
+            damping: Mat::from_fn(
+                n,
+                n,
+                |i, j| if i == j { masses[i] * damping[i] } else { 0.0 },
+            ),
+            stiffness: (0..n).map(|j| masses[j] * omegas[j] * omegas[j]).collect(),
+            unit_weights: vec![1.0; n],
+            shapes: vec![0.0; n],
+        }
+    }
+}
+
+impl<B: ModalBasis + ?Sized> StructuralSystem for ModalSystem<'_, B> {
+    fn dimension(&self) -> usize {
+        self.stiffness.len()
+    }
+
+    fn mass_matrix(&self) -> MatRef<'_, f64> {
+        self.mass.as_ref()
+    }
+
+    fn damping_matrix(&self) -> Option<MatRef<'_, f64>> {
+        Some(self.damping.as_ref())
+    }
+
+    fn internal_force(&mut self, q: &[f64], f_int: &mut [f64]) {
+        for ((f, k), q) in f_int.iter_mut().zip(&self.stiffness).zip(q) {
+            *f = k * q;
+        }
+    }
+
+    fn tangent_stiffness(&mut self, _q: &[f64], mut k: MatMut<'_, f64>) -> bool {
+        k.fill(0.0);
+        for (j, kj) in self.stiffness.iter().enumerate() {
+            k[(j, j)] = *kj;
+        }
+        true
+    }
+
+    fn is_linear(&self) -> bool {
+        true
+    }
+
+    fn external_force(&mut self, t: f64, f_ext: &mut [f64]) {
+        // Positions are filtered to the span and the slices have the basis size, so the
+        // evaluation cannot fail; a failure would leave zero force (documented as impossible).
+        if modal_forces(
+            self.basis,
+            self.loads,
+            t,
+            &self.unit_weights,
+            &mut self.shapes,
+            f_ext,
+        )
+        .is_err()
+        {
+            f_ext.fill(0.0);
+        }
+    }
 }
 
 /// Append the response at the current state to `out`.
@@ -327,9 +438,6 @@ pub fn simulate_moving_loads<B: ModalBasis + ?Sized>(
             .collect::<Result<_, _>>()?,
         steppers: Vec::with_capacity(n),
     };
-    for (&omega, &c) in omegas.iter().zip(&ws.damping) {
-        ws.steppers.push(PiecewiseLinearSdof::new(omega, c, dt)?);
-    }
     let op = OutputOperator::new(basis, points)?;
     let exit_time = loads.exit_time(basis.length());
     let n_steps = ((exit_time + free) / dt).ceil() as usize;
@@ -348,21 +456,45 @@ pub fn simulate_moving_loads<B: ModalBasis + ?Sized>(
     modal_forces_at(basis, loads, 0.0, &mut ws)?;
     std::mem::swap(&mut ws.f_now, &mut ws.f_next);
     record(omegas, &ws, &op, 0.0, &mut out);
-    for step in 1..=n_steps {
-        let t = step as f64 * dt;
-        modal_forces_at(basis, loads, t, &mut ws)?;
-        for (((stepper, q), v), (f0, f1)) in ws
-            .steppers
-            .iter()
-            .zip(ws.q.iter_mut())
-            .zip(ws.v.iter_mut())
-            .zip(ws.f_now.iter().zip(&ws.f_next))
-        {
-            (*q, *v) = stepper.step(*q, *v, *f0, *f1);
+    let every = settings.output_every;
+    match settings.integrator {
+        ModalIntegrator::ExactPiecewiseLinear => {
+            for (&omega, &c) in omegas.iter().zip(&ws.damping) {
+                ws.steppers.push(PiecewiseLinearSdof::new(omega, c, dt)?);
+            }
+            for step in 1..=n_steps {
+                let t = step as f64 * dt;
+                modal_forces_at(basis, loads, t, &mut ws)?;
+                for (((stepper, q), v), (f0, f1)) in ws
+                    .steppers
+                    .iter()
+                    .zip(ws.q.iter_mut())
+                    .zip(ws.v.iter_mut())
+                    .zip(ws.f_now.iter().zip(&ws.f_next))
+                {
+                    (*q, *v) = stepper.step(*q, *v, *f0, *f1);
+                }
+                std::mem::swap(&mut ws.f_now, &mut ws.f_next);
+                if step % every == 0 || step == n_steps {
+                    record(omegas, &ws, &op, t, &mut out);
+                }
+            }
         }
-        std::mem::swap(&mut ws.f_now, &mut ws.f_next);
-        if step % settings.output_every == 0 || step == n_steps {
-            record(omegas, &ws, &op, t, &mut out);
+        ModalIntegrator::Structural(method) => {
+            let masses: Vec<f64> = ws.inv_mass.iter().map(|m| 1.0 / m).collect();
+            let mut system = ModalSystem::new(basis, loads, &masses, &ws.damping);
+            let mut stepper = StructuralStepper::new(method, &mut system, 0.0, &ws.q, &ws.v)?;
+            for step in 1..=n_steps {
+                let t = step as f64 * dt;
+                stepper.step(&mut system, dt)?;
+                if step % every == 0 || step == n_steps {
+                    ws.q.copy_from_slice(stepper.q());
+                    ws.v.copy_from_slice(stepper.v());
+                    modal_forces_at(basis, loads, t, &mut ws)?;
+                    std::mem::swap(&mut ws.f_now, &mut ws.f_next);
+                    record(omegas, &ws, &op, t, &mut out);
+                }
+            }
         }
     }
     Ok(out)
