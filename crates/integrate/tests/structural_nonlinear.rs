@@ -228,10 +228,8 @@ fn outside_step(s: &mut StructuralStepper, p: &mut WheelOnMode, dt: f64) -> usiz
     let m = [p.mass[(0, 0)], p.mass[(1, 1)]];
     let c = [p.damping[(0, 0)], p.damping[(1, 1)]];
     // Same start as the built-in solver: a_{n+1} = a_n.
-    let mut q = [0.0; 2];
-    for i in 0..2 {
-        q[i] = eq.q_pred[i] + eq.displacement_per_acceleration * s.a()[i];
-    }
+    let mut q: [f64; 2] =
+        std::array::from_fn(|i| eq.q_pred[i] + eq.displacement_per_acceleration * s.a()[i]);
     let d: Vec<f64> = (0..2)
         .map(|i| {
             eq.mass_coefficient * m[i]
