@@ -137,6 +137,18 @@ fn bad_problems_and_states_are_rejected() {
     for dt in [0.0, -0.1, f64::NAN, f64::INFINITY] {
         assert_eq!(invalid_name(s.step(&mut p, dt).unwrap_err()), "dt");
     }
+    let mut singular_mass = LinearStructure::new(
+        Mat::from_fn(2, 2, |_, _| 1.0),
+        None,
+        Mat::identity(2, 2),
+        load,
+    )
+    .unwrap();
+    let err = StructuralStepper::new(method, &mut singular_mass, 0.5, &[0.0; 2], &[0.0; 2]);
+    assert_eq!(
+        err.err().unwrap(),
+        IntegrateError::SingularMatrix { t: 0.5 }
+    );
     let mut two_dof =
         LinearStructure::new(Mat::identity(2, 2), None, Mat::identity(2, 2), load).unwrap();
     assert_eq!(

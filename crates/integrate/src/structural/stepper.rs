@@ -1,10 +1,9 @@
 //! The structural stepper: state, explicit steps, the implicit step equation, Newton's method,
 //! the corrector and the dense output.
 
-use faer::linalg::solvers::PartialPivLu;
 use faer::{Mat, MatRef};
 
-use super::linalg::{check_matrix, check_vector, factorize, mat_vec_add, norm_inf, solve_in_place};
+use super::linalg::{DenseLu, check_matrix, check_vector, mat_vec_add, norm_inf};
 use super::{StepEquation, StructuralMethod, StructuralSystem};
 use crate::{IntegrateError, Stats};
 
@@ -81,10 +80,13 @@ struct Workspace {
     k_eff: Mat<f64>,
     /// The tangent of a linear problem, evaluated once.
     tangent_valid: bool,
-    /// LU of `K_eff` and the step size it was built for (linear problems only).
-    implicit_lu: Option<(f64, PartialPivLu<f64>)>,
-    /// LU of `M + c C` and the coefficient `c` (explicit methods with damping).
-    explicit_lu: Option<(f64, PartialPivLu<f64>)>,
+    /// LU of `K_eff`, and the step size it was built for if it may be reused (linear
+    /// problems only).
+    implicit_lu: DenseLu,
+    implicit_lu_dt: Option<f64>,
+    /// LU of `M + c C`, and the coefficient `c` it was built for (explicit methods).
+    explicit_lu: DenseLu,
+    explicit_lu_c: Option<f64>,
 }
 
 impl Workspace {
@@ -101,8 +103,10 @@ impl Workspace {
             tangent: Mat::zeros(n, n),
             k_eff: Mat::zeros(n, n),
             tangent_valid: false,
-            implicit_lu: None,
-            explicit_lu: None,
+            implicit_lu: DenseLu::new(n),
+            implicit_lu_dt: None,
+            explicit_lu: DenseLu::new(n),
+            explicit_lu_c: None,
         }
     }
 }
@@ -118,7 +122,7 @@ pub struct StructuralStepper {
     method: StructuralMethod,
     newton: NewtonOptions,
     mass: Mat<f64>,
-    mass_lu: PartialPivLu<f64>,
+    mass_lu: DenseLu,
     damping: Option<Mat<f64>>,
     t: f64,
     q: Vec<f64>,
@@ -152,7 +156,7 @@ impl StructuralStepper {
         if let Some(c) = &stepper.damping {
             mat_vec_add(c.as_ref(), -1.0, v0, rhs);
         }
-        solve_in_place(&stepper.mass_lu, rhs);
+        stepper.mass_lu.solve_in_place(rhs);
         check_vector("a0", rhs, n).map_err(|_| IntegrateError::NonFinite { t: t0 })?;
         stepper.a.copy_from_slice(rhs);
         Ok(stepper)
@@ -211,7 +215,8 @@ impl StructuralStepper {
         if let Some(c) = &damping {
             check_matrix("damping", c.as_ref(), n)?;
         }
-        let mass_lu = factorize(mass.as_ref(), t0)?;
+        let mut mass_lu = DenseLu::new(n);
+        mass_lu.factorize(mass.as_ref(), t0)?;
         let mut stats = Stats {
             lu_decompositions: 1,
             f_evals: 1,
@@ -416,27 +421,27 @@ impl StructuralStepper {
             w.residual[i] = w.f_ext[i] - w.f_int[i];
         }
         let Some(damping) = &self.damping else {
-            solve_in_place(&self.mass_lu, &mut w.residual);
+            self.mass_lu.solve_in_place(&mut w.residual);
             return finite_or_error(&w.residual, t);
         };
         mat_vec_add(damping.as_ref(), -1.0, &w.half, &mut w.residual);
         if c == 0.0 {
-            solve_in_place(&self.mass_lu, &mut w.residual);
+            self.mass_lu.solve_in_place(&mut w.residual);
             return finite_or_error(&w.residual, t);
         }
-        if w.explicit_lu.as_ref().is_none_or(|(key, _)| *key != c) {
+        if w.explicit_lu_c != Some(c) {
             let n = self.q.len();
             for j in 0..n {
                 for i in 0..n {
                     w.k_eff[(i, j)] = self.mass[(i, j)] + c * damping[(i, j)];
                 }
             }
-            w.explicit_lu = Some((c, factorize(w.k_eff.as_ref(), t)?));
+            w.explicit_lu_c = None;
+            w.explicit_lu.factorize(w.k_eff.as_ref(), t)?;
+            w.explicit_lu_c = Some(c);
             self.stats.lu_decompositions += 1;
         }
-        if let Some((_, lu)) = &w.explicit_lu {
-            solve_in_place(lu, &mut w.residual);
-        }
+        w.explicit_lu.solve_in_place(&mut w.residual);
         finite_or_error(&w.residual, t)
     }
 
@@ -601,9 +606,7 @@ impl StructuralStepper {
             residual_norm = norm_inf(&w.residual);
             self.prepare_effective_matrix(problem, eq, linear)?;
             let w = &mut self.work;
-            if let Some((_, lu)) = &w.implicit_lu {
-                solve_in_place(lu, &mut w.residual);
-            }
+            w.implicit_lu.solve_in_place(&mut w.residual);
             for (q, dq) in w.q_iter.iter_mut().zip(&w.residual) {
                 *q -= dq;
             }
@@ -630,11 +633,7 @@ impl StructuralStepper {
         eq: &StepEquation,
         linear: bool,
     ) -> Result<(), IntegrateError> {
-        let cached = self
-            .work
-            .implicit_lu
-            .as_ref()
-            .is_some_and(|(dt, _)| *dt == eq.dt);
+        let cached = self.work.implicit_lu_dt == Some(eq.dt);
         if linear && self.work.tangent_valid && cached {
             return Ok(());
         }
@@ -649,8 +648,11 @@ impl StructuralStepper {
             w.tangent.as_ref(),
             w.k_eff.as_mut(),
         );
-        let lu = factorize(w.k_eff.as_ref(), eq.t_new)?;
-        w.implicit_lu = Some((if linear { eq.dt } else { f64::NAN }, lu));
+        w.implicit_lu_dt = None;
+        w.implicit_lu.factorize(w.k_eff.as_ref(), eq.t_new)?;
+        if linear {
+            w.implicit_lu_dt = Some(eq.dt);
+        }
         self.stats.lu_decompositions += 1;
         Ok(())
     }

@@ -1,0 +1,74 @@
+//! The steppers preallocate their workspaces: stepping a linear problem allocates nothing.
+//! Checked with a counting global allocator (this binary holds a single test, so no other
+//! test thread allocates while counting).
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use faer::Mat;
+use integrate::structural::{LinearStructure, StructuralMethod, StructuralStepper};
+
+struct CountingAllocator;
+
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+// SAFETY: forwards every call to the system allocator unchanged; only counts.
+unsafe impl GlobalAlloc for CountingAllocator {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        // SAFETY: same contract as the caller's.
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: same contract as the caller's.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        // SAFETY: same contract as the caller's.
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: CountingAllocator = CountingAllocator;
+
+#[test]
+fn stepping_a_linear_problem_does_not_allocate() {
+    let n = 6;
+    let m = Mat::from_fn(n, n, |i, j| if i == j { 1.0 + i as f64 } else { 0.0 });
+    let k = Mat::from_fn(n, n, |i, j| match i.abs_diff(j) {
+        0 => 4.0,
+        1 => -1.5,
+        _ => 0.0,
+    });
+    let c = Mat::from_fn(n, n, |i, j| 0.01 * k[(i, j)]);
+    let mut problem = LinearStructure::new(m, Some(c), k, |t: f64, f: &mut [f64]| {
+        f.fill(0.0);
+        f[0] = t.sin();
+    })
+    .unwrap();
+    for method in [
+        StructuralMethod::average_acceleration(),
+        StructuralMethod::hht(-0.2).unwrap(),
+        StructuralMethod::generalized_alpha(0.6).unwrap(),
+        StructuralMethod::BackwardEuler,
+        StructuralMethod::StormerVerlet,
+        StructuralMethod::Leapfrog,
+        StructuralMethod::central_difference(),
+    ] {
+        let mut s =
+            StructuralStepper::new(method, &mut problem, 0.0, &[0.1; 6], &[0.0; 6]).unwrap();
+        // The first step builds the cached factorisations.
+        s.step(&mut problem, 0.01).unwrap();
+        let before = ALLOCATIONS.load(Ordering::Relaxed);
+        for _ in 0..100 {
+            s.step(&mut problem, 0.01).unwrap();
+        }
+        let allocations = ALLOCATIONS.load(Ordering::Relaxed) - before;
+        assert_eq!(
+            allocations, 0,
+            "{method:?} allocated {allocations} times in 100 steps"
+        );
+    }
+}
