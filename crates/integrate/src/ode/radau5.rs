@@ -606,8 +606,7 @@ impl OdeStepper for Radau5 {
                 NewtonOutcome::Converged { iterations } => iterations,
                 NewtonOutcome::TooSlow { factor } => {
                     if self.fixed_step.is_some() {
-                        // Fixed step: keep iterating is not possible with a fixed h; refine the
-                        // Jacobian once, then give up.
+                        // Fixed step: h cannot be reduced, so slow convergence is a failure.
                         self.unexpected_rejection(false)?;
                         continue;
                     }
