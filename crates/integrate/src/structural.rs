@@ -5,7 +5,9 @@
 //! A [`StructuralSystem`] provides a constant mass matrix `M`, an optional constant damping
 //! matrix `C`, a (possibly nonlinear) internal force `f_int(q)` with an optional tangent
 //! stiffness `K_t = ∂f_int/∂q` (finite differences otherwise) and an external load `f_ext(t)`.
-//! [`LinearStructure`] is a ready-made linear system `f_int = K q`.
+//! [`LinearStructure`] is a ready-made linear system `f_int = K q`; [`FirstOrderForm`] turns any
+//! structural system into a first-order [`OdeSystem`](crate::ode::OdeSystem) (`y = [q, v]`) so
+//! the methods of [`crate::ode`] can integrate it.
 //!
 //! # Methods ([`StructuralMethod`])
 //! | method | kind | order | source |
@@ -42,6 +44,7 @@
 //! `q_{n+1}`. The built-in [`StructuralStepper::step`] solves the same equation by Newton's method
 //! and calls the same corrector, so both paths share one implementation of the formulas.
 
+mod first_order;
 mod linalg;
 mod linear;
 mod method;
@@ -49,6 +52,7 @@ mod step_equation;
 mod stepper;
 mod system;
 
+pub use first_order::FirstOrderForm;
 pub use linear::LinearStructure;
 pub use method::StructuralMethod;
 pub use step_equation::StepEquation;

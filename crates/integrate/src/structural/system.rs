@@ -41,3 +41,28 @@ pub trait StructuralSystem {
     /// Writes the external load `f_ext(t)` into `f_ext`.
     fn external_force(&mut self, t: f64, f_ext: &mut [f64]);
 }
+
+/// A mutable reference to a system is a system (so adapters can borrow a problem).
+impl<T: StructuralSystem + ?Sized> StructuralSystem for &mut T {
+    fn dimension(&self) -> usize {
+        (**self).dimension()
+    }
+    fn mass_matrix(&self) -> MatRef<'_, f64> {
+        (**self).mass_matrix()
+    }
+    fn damping_matrix(&self) -> Option<MatRef<'_, f64>> {
+        (**self).damping_matrix()
+    }
+    fn internal_force(&mut self, q: &[f64], f_int: &mut [f64]) {
+        (**self).internal_force(q, f_int)
+    }
+    fn tangent_stiffness(&mut self, q: &[f64], k: MatMut<'_, f64>) -> bool {
+        (**self).tangent_stiffness(q, k)
+    }
+    fn is_linear(&self) -> bool {
+        (**self).is_linear()
+    }
+    fn external_force(&mut self, t: f64, f_ext: &mut [f64]) {
+        (**self).external_force(t, f_ext)
+    }
+}
