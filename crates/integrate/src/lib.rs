@@ -20,6 +20,6 @@ pub use error::IntegrateError;
 pub use ode::{Method, OdeOptions, OdeStepper, OdeSystem};
 pub use stats::Stats;
 pub use structural::{
-    LinearStructure, NewtonOptions, StepEquation, StructuralMethod, StructuralStepper,
-    StructuralSystem,
+    FirstOrderForm, LinearStructure, NewtonOptions, StepEquation, StructuralMethod,
+    StructuralStepper, StructuralSystem,
 };
