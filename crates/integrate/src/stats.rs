@@ -7,7 +7,9 @@ pub struct Stats {
     pub steps: usize,
     /// Rejected steps (error test failure or Newton failure).
     pub rejected_steps: usize,
-    /// Evaluations of the right-hand side f (or of the force vector).
+    /// Evaluations of the right-hand side f (or of the force vector). For the first-order
+    /// methods this excludes the evaluations spent on finite-difference Jacobians (RADAU5's
+    /// `NFCN` convention; add `dim` per Jacobian evaluation to get the total).
     pub f_evals: usize,
     /// Evaluations of the Jacobian (analytic or by finite differences).
     pub jacobian_evals: usize,

@@ -93,9 +93,10 @@ impl<T: LuScalar> DenseLu<T> {
 }
 
 /// Forward-difference Jacobian `J[:, j] ≈ (f(t, y + δ_j e_j) − f(t, y)) / δ_j` with the
-/// increment of Hairer–Wanner's RADAU5, `δ_j = √(ε · max(10⁻⁵, |y_j|))` (ε the unit roundoff),
-/// i.e. `√ε·max(|y_j|, scale)` in relative terms. `f0 = f(t, y)` is given; `y_work` and `f_work`
-/// are scratch vectors of length n. Costs n evaluations of `f`.
+/// increment `δ_j = √ε · max(|y_j|, 10⁻⁵)` (ε the machine epsilon): the truncation error
+/// O(δ) and the cancellation error O(ε/δ) balance at δ ≈ √ε relative to the magnitude of y_j;
+/// the floor 10⁻⁵ (RADAU5's) serves components that pass through zero. `f0 = f(t, y)` is given;
+/// `y_work` and `f_work` are scratch vectors of length n. Costs n evaluations of `f`.
 pub fn finite_difference_jacobian(
     sys: &mut dyn OdeSystem,
     t: f64,
@@ -107,7 +108,7 @@ pub fn finite_difference_jacobian(
 ) {
     y_work.copy_from_slice(y);
     for j in 0..y.len() {
-        let delta = (f64::EPSILON * y[j].abs().max(1e-5)).sqrt();
+        let delta = f64::EPSILON.sqrt() * y[j].abs().max(1e-5);
         y_work[j] = y[j] + delta;
         sys.rhs(t, y_work, f_work);
         for i in 0..y.len() {
