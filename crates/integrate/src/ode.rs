@@ -22,6 +22,31 @@
 //! The convenience driver [`solve`] integrates to `t_end`, collects output, locates events
 //! (zero crossings of user functions) and guards short contacts (see [`events`]).
 //! Only forward integration (`t` increasing) is supported.
+//!
+//! # Example: an outer loop driving a method step by step
+//! ```
+//! use integrate::ode::{Method, OdeOptions, OdeStepper, OdeSystem};
+//!
+//! /// y' = −2y.
+//! struct Decay;
+//! impl OdeSystem for Decay {
+//!     fn dim(&self) -> usize { 1 }
+//!     fn rhs(&mut self, _t: f64, y: &[f64], dydt: &mut [f64]) { dydt[0] = -2.0 * y[0]; }
+//! }
+//!
+//! let method = Method::from_name("radau5")?;
+//! let mut stepper = method.build(1, &OdeOptions::adaptive(1e-8, 1e-10))?;
+//! let mut sys = Decay;
+//! stepper.set_state(&mut sys, 0.0, &[1.0])?;
+//! stepper.set_stop_time(Some(1.0));
+//! while stepper.t() < 1.0 {
+//!     stepper.step(&mut sys)?;
+//!     // ... the outer simulation may inspect or change the state here, e.g. restart after a
+//!     // discontinuity with `stepper.set_state(&mut sys, t, &y_new)`.
+//! }
+//! assert!((stepper.y()[0] - (-2.0f64).exp()).abs() < 1e-7);
+//! # Ok::<(), integrate::IntegrateError>(())
+//! ```
 
 mod adams;
 mod backward_euler;
