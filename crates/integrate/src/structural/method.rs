@@ -51,6 +51,13 @@ pub enum StructuralMethod {
     BackwardEuler,
 }
 
+impl Default for StructuralMethod {
+    /// Newmark average acceleration (the trapezoidal rule).
+    fn default() -> Self {
+        Self::average_acceleration()
+    }
+}
+
 /// The parameters of the generalized-α family (Newmark and HHT are members).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct AlphaParameters {

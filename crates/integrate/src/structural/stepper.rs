@@ -147,19 +147,55 @@ impl StructuralStepper {
         v0: &[f64],
     ) -> Result<Self, IntegrateError> {
         let mut stepper = Self::assemble(method, problem, t0, q0, v0)?;
-        let n = q0.len();
-        let rhs = &mut stepper.work.residual;
-        problem.external_force(t0, &mut stepper.work.f_ext);
-        for ((r, fe), fi) in rhs.iter_mut().zip(&stepper.work.f_ext).zip(&stepper.f_int) {
+        stepper.consistent_acceleration(problem)?;
+        Ok(stepper)
+    }
+
+    /// Restarts at `(t, q, v)` with the consistent acceleration (e.g. after a discontinuity of
+    /// the load or of the model). Statistics, options and factorisations are kept; the dense
+    /// output is cleared. Invalid arguments leave the stepper unchanged; a non-finite force
+    /// (`NonFinite`) leaves it half-restarted, to be restarted again.
+    pub fn restart<P: StructuralSystem + ?Sized>(
+        &mut self,
+        problem: &mut P,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+    ) -> Result<(), IntegrateError> {
+        self.check_problem(problem)?;
+        check_time("t", t)?;
+        check_vector("q", q, self.q.len())?;
+        check_vector("v", v, self.q.len())?;
+        let f_int = &mut self.work.f_int;
+        problem.internal_force(q, f_int);
+        self.stats.f_evals += 1;
+        finite_or_error(f_int, t)?;
+        self.f_int.copy_from_slice(f_int);
+        self.t = t;
+        self.q.copy_from_slice(q);
+        self.v.copy_from_slice(v);
+        self.last_step = None;
+        self.consistent_acceleration(problem)
+    }
+
+    /// `a = M⁻¹(f_ext(t) − C v − f_int(q))` at the current state (dynamics.md §3.5, start-up),
+    /// with `f_int(q)` already in `self.f_int`.
+    fn consistent_acceleration<P: StructuralSystem + ?Sized>(
+        &mut self,
+        problem: &mut P,
+    ) -> Result<(), IntegrateError> {
+        let w = &mut self.work;
+        problem.external_force(self.t, &mut w.f_ext);
+        for ((r, fe), fi) in w.residual.iter_mut().zip(&w.f_ext).zip(&self.f_int) {
             *r = fe - fi;
         }
-        if let Some(c) = &stepper.damping {
-            mat_vec_add(c.as_ref(), -1.0, v0, rhs);
+        if let Some(c) = &self.damping {
+            mat_vec_add(c.as_ref(), -1.0, &self.v, &mut w.residual);
         }
-        stepper.mass_lu.solve_in_place(rhs);
-        check_vector("a0", rhs, n).map_err(|_| IntegrateError::NonFinite { t: t0 })?;
-        stepper.a.copy_from_slice(rhs);
-        Ok(stepper)
+        self.mass_lu.solve_in_place(&mut w.residual);
+        finite_or_error(&w.residual, self.t)?;
+        self.a.copy_from_slice(&w.residual);
+        Ok(())
     }
 
     /// Creates a stepper at `(t0, q0, v0)` with a given initial acceleration `a0` (which need
@@ -195,12 +231,7 @@ impl StructuralStepper {
                 reason: "0 degrees of freedom".to_string(),
             });
         }
-        if !t0.is_finite() {
-            return Err(IntegrateError::InvalidParameter {
-                name: "t0",
-                reason: format!("{t0} (must be finite)"),
-            });
-        }
+        check_time("t0", t0)?;
         check_vector("q0", q0, n)?;
         check_vector("v0", v0, n)?;
         let mass = problem.mass_matrix().to_owned();
@@ -743,6 +774,17 @@ impl StructuralStepper {
             });
         }
         Ok((theta, dt))
+    }
+}
+
+fn check_time(name: &'static str, t: f64) -> Result<(), IntegrateError> {
+    if t.is_finite() {
+        Ok(())
+    } else {
+        Err(IntegrateError::InvalidParameter {
+            name,
+            reason: format!("{t} (must be finite)"),
+        })
     }
 }
 
