@@ -118,6 +118,9 @@ impl Workspace {
 /// For the implicit methods, [`step_equation`](Self::step_equation) and
 /// [`finish_step`](Self::finish_step) let an outside solver take the step; [`step`](Self::step)
 /// does it with Newton's method on the same equation.
+///
+/// Pass the same problem to every call: for a linear problem the tangent and the factorised
+/// effective matrix are cached across steps.
 pub struct StructuralStepper {
     method: StructuralMethod,
     newton: NewtonOptions,
