@@ -8,9 +8,11 @@
 //! * [`loads`]: modal point and distributed loads, quasi-static response;
 //! * [`moving`]: moving forces and axle trains, time histories and amplification factors;
 //! * [`closed_form`]: Frýba's series for a moving force on a simply supported beam;
-//! * [`sdof`]: the exact piecewise-linear (Nigam–Jennings-type) modal step.
+//! * [`sdof`]: the exact piecewise-linear (Nigam–Jennings-type) modal step;
+//! * [`bench`]: fixed workloads for the benchmark driver.
 
 pub mod analytic;
+pub mod bench;
 pub mod closed_form;
 pub mod damping;
 pub mod error;
@@ -24,7 +26,10 @@ pub mod sdof;
 pub use analytic::{AnalyticBeam, Support, UniformBeam};
 pub use damping::ModalDamping;
 pub use error::BeamError;
-pub use fe::{FeBeam, FeModes, PointMass, PointSupport, Section, StaticDeflection, SupportKind};
+pub use fe::{
+    EigenReduction, FeBeam, FeModes, PointMass, PointSupport, Section, StaticDeflection,
+    SupportKind,
+};
 pub use loads::DistributedLoadProjector;
 pub use modal::{Derivative, ModalBasis};
 pub use moving::{

@@ -1,0 +1,79 @@
+//! Fixed workloads for a benchmark driver (`dyncontact bench`); no timing here, no I/O.
+//!
+//! Each function runs one representative computation and returns its result so the caller can
+//! time it and keep the optimiser from discarding the work.
+
+use crate::analytic::{AnalyticBeam, Support, UniformBeam};
+use crate::closed_form::speed_for_parameter;
+use crate::damping::ModalDamping;
+use crate::error::BeamError;
+use crate::fe::{EigenReduction, FeBeam, FeModes, PointSupport, Section, SupportKind};
+use crate::modal::{Derivative, ModalBasis};
+use crate::moving::{MovingLoadResponse, MovingLoadSettings, MovingLoads, simulate_moving_loads};
+
+/// Frýba's 25 m bridge (dynamics.md §1.3): EI = 2.87e9·2.90 N m², ρA = 2303 kg/m.
+pub fn fryba_bridge() -> Result<UniformBeam, BeamError> {
+    UniformBeam::new(25.0, 2.87e9 * 2.90, 2303.0)
+}
+
+/// A 56.4 kN force crossing the 25 m simply supported bridge at 27.78 m/s with `n_modes` modes,
+/// 2 % damping, time step `dt`, plus 0.5 s of free vibration; response at quarter and mid span.
+pub fn moving_load_run(n_modes: usize, dt: f64) -> Result<MovingLoadResponse, BeamError> {
+    let beam = fryba_bridge()?;
+    let basis = AnalyticBeam::new(Support::SimplySupported, beam, n_modes)?;
+    let loads = MovingLoads::single(56.4e3, 27.78)?;
+    let settings = MovingLoadSettings::new(dt, 0.5);
+    simulate_moving_loads(
+        &basis,
+        &ModalDamping::Uniform(0.02),
+        &loads,
+        &settings,
+        &[6.25, 12.5],
+    )
+}
+
+/// Evaluate `n_modes` clamped–clamped modes at `n_points` equally spaced points; returns the sum
+/// of all values (a checksum).
+pub fn mode_evaluation(n_modes: usize, n_points: usize) -> Result<f64, BeamError> {
+    let beam = fryba_bridge()?;
+    let basis = AnalyticBeam::new(Support::ClampedClamped, beam, n_modes)?;
+    let mut out = vec![0.0; n_modes];
+    let mut sum = 0.0;
+    for i in 0..n_points {
+        let x = beam.length * i as f64 / (n_points.max(2) - 1) as f64;
+        basis.eval_all(x.min(beam.length), Derivative::Shape, &mut out)?;
+        sum += out.iter().sum::<f64>();
+    }
+    Ok(sum)
+}
+
+/// FE eigen-solve of the simply supported bridge with `n_elements` elements, lowest `n_modes`,
+/// by the given reduction.
+pub fn fe_eigen_solve(
+    n_elements: usize,
+    n_modes: usize,
+    reduction: EigenReduction,
+) -> Result<FeModes, BeamError> {
+    let beam = fryba_bridge()?;
+    let sections = [Section {
+        length: beam.length,
+        bending_stiffness: beam.bending_stiffness,
+        mass_per_length: beam.mass_per_length,
+    }];
+    let supports = [
+        PointSupport {
+            x: 0.0,
+            kind: SupportKind::Pinned,
+        },
+        PointSupport {
+            x: beam.length,
+            kind: SupportKind::Pinned,
+        },
+    ];
+    FeBeam::new(&sections, &supports, &[], n_elements)?.modes_with(n_modes, reduction)
+}
+
+/// Speed giving speed parameter α on Frýba's bridge (convenience for sweeps).
+pub fn fryba_speed(alpha: f64) -> Result<f64, BeamError> {
+    speed_for_parameter(&fryba_bridge()?, alpha)
+}
