@@ -17,7 +17,7 @@
 //! | `backward_euler` | implicit Euler, Newton | 1 | fixed | cubic Hermite |
 //! | `radau5` | Radau IIA, 3 stages (RADAU5 design) | 5 | adaptive or fixed | collocation |
 //! | `bdf` | variable-order BDF 1–5 (backward differences) | 1–5 | adaptive or fixed | interpolating polynomial |
-//! | `adams` | Adams–Bashforth–Moulton PECE | 1–4 | fixed | cubic Hermite |
+//! | `adams` | Adams–Bashforth–Moulton PECE | 1–4 | adaptive or fixed | cubic Hermite |
 //!
 //! The convenience driver [`solve`] integrates to `t_end`, collects output, locates events
 //! (zero crossings of user functions) and guards short contacts (see [`events`]).
@@ -97,8 +97,8 @@ pub struct OdeOptions {
     pub rtol: f64,
     /// Absolute tolerance of the local error test.
     pub atol: f64,
-    /// `Some(h)`: take steps of exactly `h` (required by euler, rk4, backward_euler, adams;
-    /// optional for dopri5, radau5 and bdf, which are adaptive when it is `None`).
+    /// `Some(h)`: take steps of exactly `h` (required by euler, rk4 and backward_euler;
+    /// optional for dopri5, radau5, bdf and adams, which are adaptive when it is `None`).
     pub fixed_step: Option<f64>,
     /// First trial step of an adaptive method; `None` chooses one automatically.
     pub initial_step: Option<f64>,
