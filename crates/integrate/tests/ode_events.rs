@@ -294,3 +294,127 @@ fn contact_guard_keeps_every_bounce_at_loose_tolerances() {
         "unguarded Radau5 at rtol 1e-2 now sees every bounce: {impacts:?}"
     );
 }
+
+/// Harmonic oscillator `q' = p, p' = −q` from (1, 0): q = cos t crosses zero falling at
+/// π/2 + 2kπ and rising at 3π/2 + 2kπ. Several crossings per run, directions filtered, times
+/// located on Radau5's and DOPRI5's dense output to 1e-8 (rtol 1e-10; the dense output is
+/// accurate to about the tolerance, the root finder to round-off).
+#[test]
+fn oscillator_zero_crossings_by_direction() {
+    struct Oscillator;
+    impl OdeSystem for Oscillator {
+        fn dim(&self) -> usize {
+            2
+        }
+        fn rhs(&mut self, _t: f64, y: &[f64], dydt: &mut [f64]) {
+            dydt[0] = y[1];
+            dydt[1] = -y[0];
+        }
+    }
+    use std::f64::consts::PI;
+    for method in [Method::Radau5, Method::Dopri5, Method::Bdf] {
+        let mut stepper = method
+            .build(2, &OdeOptions::adaptive(1e-10, 1e-12))
+            .unwrap();
+        let mut events = [
+            Event::new(|_t, y: &[f64]| y[0]).direction(Direction::Falling),
+            Event::new(|_t, y: &[f64]| y[0]).direction(Direction::Rising),
+            Event::new(|_t, y: &[f64]| y[1]),
+        ];
+        let sol = solve(
+            stepper.as_mut(),
+            &mut Oscillator,
+            (0.0, &[1.0, 0.0]),
+            20.0,
+            &mut events,
+            &Output::Final,
+        )
+        .unwrap();
+        let times = |i: usize| {
+            sol.events
+                .iter()
+                .filter(|e| e.index == i)
+                .map(|e| e.t)
+                .collect::<Vec<_>>()
+        };
+        let falling: Vec<f64> = (0..4)
+            .map(|k| PI / 2.0 + 2.0 * PI * k as f64)
+            .filter(|&t| t < 20.0)
+            .collect();
+        let rising: Vec<f64> = (0..4)
+            .map(|k| 1.5 * PI + 2.0 * PI * k as f64)
+            .filter(|&t| t < 20.0)
+            .collect();
+        // p = −sin t is zero at kπ, both directions (t = 0 itself is the start, not a crossing).
+        let both: Vec<f64> = (1..7)
+            .map(|k| PI * k as f64)
+            .filter(|&t| t < 20.0)
+            .collect();
+        let tol = if method == Method::Bdf { 1e-7 } else { 1e-8 };
+        for (i, expected) in [(0, falling), (1, rising), (2, both)] {
+            let found = times(i);
+            assert_eq!(
+                found.len(),
+                expected.len(),
+                "{} event {i}: {found:?}",
+                method.name()
+            );
+            for (a, b) in found.iter().zip(&expected) {
+                assert!(
+                    (a - b).abs() < tol,
+                    "{} event {i}: {a} vs {b}",
+                    method.name()
+                );
+            }
+        }
+        assert!(
+            sol.events.windows(2).all(|w| w[0].t <= w[1].t),
+            "events in time order"
+        );
+    }
+}
+
+/// An outer loop with a terminal event and a state change between steps: a ball dropped from
+/// h bounces with restitution e (v ← −e v at z = 0, restart with `set_state` via `solve`).
+/// Impact times t₁ = √(2h/g), t_{k+1} = t_k + 2 e^k v₁/g with v₁ = √(2gh); located to 1e-10
+/// (free flight is a parabola, integrated exactly).
+#[test]
+fn bouncing_ball_with_restitution_via_restarts() {
+    let (h, e): (f64, f64) = (1.0, 0.8);
+    let v1 = (2.0 * G * h).sqrt();
+    let mut expected = vec![(2.0 * h / G).sqrt()];
+    for k in 1..5 {
+        let last = *expected.last().unwrap();
+        expected.push(last + 2.0 * e.powi(k) * v1 / G);
+    }
+    let mut stepper = Method::Dopri5
+        .build(2, &OdeOptions::adaptive(1e-10, 1e-12))
+        .unwrap();
+    let (mut t, mut y) = (0.0, vec![h, 0.0]);
+    for (k, t_expected) in expected.iter().enumerate() {
+        let mut events = [Event::new(|_t, y: &[f64]| y[0])
+            .direction(Direction::Falling)
+            .terminal()];
+        let sol = solve(
+            stepper.as_mut(),
+            &mut FreeFall,
+            (t, &y),
+            100.0,
+            &mut events,
+            &Output::Final,
+        )
+        .unwrap();
+        assert!(sol.terminated);
+        let hit = &sol.events[0];
+        assert!(
+            (hit.t - t_expected).abs() < 1e-10,
+            "bounce {k}: {} vs {t_expected}",
+            hit.t
+        );
+        t = hit.t;
+        y = vec![0.0, -e * hit.y[1]];
+        // The restart at z = 0 moving up is not a crossing: a falling crossing needs g > 0
+        // before it.
+        assert!(y[1] > 0.0);
+    }
+}
