@@ -139,3 +139,8 @@ fn newmark_impact_converges_to_hertz_at_second_order() {
 fn verlet_impact_converges_to_hertz_at_second_order() {
     check_convergence(StructuralMethod::StormerVerlet);
 }
+
+#[test]
+fn generalized_alpha_impact_converges_to_hertz_at_second_order() {
+    check_convergence(StructuralMethod::generalized_alpha(0.8).unwrap());
+}
