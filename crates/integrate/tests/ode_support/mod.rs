@@ -126,6 +126,20 @@ impl OdeSystem for Hires {
     }
 }
 
+/// OREGO, the Oregonator (Field–Noyes; Bari test set definition, dynamics.md §3.1).
+pub struct Oregonator;
+
+impl OdeSystem for Oregonator {
+    fn dim(&self) -> usize {
+        3
+    }
+    fn rhs(&mut self, _t: f64, y: &[f64], f: &mut [f64]) {
+        f[0] = 77.27 * (y[1] + y[0] * (1.0 - 8.375e-6 * y[0] - y[1]));
+        f[1] = (y[2] - (1.0 + y[0]) * y[1]) / 77.27;
+        f[2] = 0.161 * (y[0] - y[2]);
+    }
+}
+
 /// Run a stepper from (t0, y0) to exactly t_end; returns the final state.
 pub fn run_to(
     stepper: &mut dyn OdeStepper,
