@@ -340,3 +340,36 @@ fn solve_collects_requested_times() {
     assert_eq!(sol.t.len(), 11, "initial point and 10 steps");
     assert!((sol.t[10] - 1.0).abs() < 1e-15);
 }
+
+/// `set_max_step` caps every following step of every method, and removing the cap lets the
+/// adaptive ones grow again (oscillator, rtol 1e-6: natural steps ≈ 0.1–0.5 ≫ cap 1e-3).
+#[test]
+fn step_cap_applies_to_every_method() {
+    for method in Method::ALL {
+        let opts = match method {
+            Method::Euler | Method::Rk4 | Method::BackwardEuler => fixed(0.05),
+            _ => OdeOptions::adaptive(1e-6, 1e-9),
+        };
+        let mut s = method.build(2, &opts).unwrap();
+        s.set_state(&mut Oscillator, 0.0, &[1.0, 0.0]).unwrap();
+        steps(s.as_mut(), &mut Oscillator, 20);
+        s.set_max_step(1e-3);
+        for _ in 0..20 {
+            s.step(&mut Oscillator).unwrap();
+            assert!(
+                s.last_step_size() <= 1e-3 * (1.0 + 1e-12),
+                "{}: {}",
+                method.name(),
+                s.last_step_size()
+            );
+        }
+        s.set_max_step(f64::INFINITY);
+        steps(s.as_mut(), &mut Oscillator, 40);
+        assert!(
+            s.last_step_size() > 1e-2,
+            "{}: step stays at {}",
+            method.name(),
+            s.last_step_size()
+        );
+    }
+}
