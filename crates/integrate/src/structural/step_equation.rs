@@ -2,6 +2,8 @@
 
 use faer::{MatMut, MatRef};
 
+use crate::IntegrateError;
+
 /// The equation of one implicit step `n → n+1`, with the displacement `q_{n+1}` as unknown
 /// (module documentation of [`structural`](super); Chung & Hulbert 1993 for the α form):
 ///
@@ -48,22 +50,67 @@ pub struct StepEquation {
 }
 
 impl StepEquation {
+    /// Number of degrees of freedom `n`.
+    pub fn dimension(&self) -> usize {
+        self.q_pred.len()
+    }
+
+    /// Checks that a vector argument has length `n`.
+    fn check_len(&self, name: &'static str, len: usize) -> Result<(), IntegrateError> {
+        if len == self.dimension() {
+            Ok(())
+        } else {
+            Err(IntegrateError::InvalidParameter {
+                name,
+                reason: format!("length {len} (expected {})", self.dimension()),
+            })
+        }
+    }
+
+    /// Checks that a matrix argument is `n × n`.
+    fn check_shape(&self, name: &'static str, a: MatRef<'_, f64>) -> Result<(), IntegrateError> {
+        let n = self.dimension();
+        if a.nrows() == n && a.ncols() == n {
+            Ok(())
+        } else {
+            Err(IntegrateError::InvalidParameter {
+                name,
+                reason: format!("shape {}x{} (expected {n}x{n})", a.nrows(), a.ncols()),
+            })
+        }
+    }
+
     /// `a_{n+1} = (q_{n+1} − q̃)/c_qa` for entry `i`.
+    ///
+    /// # Panics
+    /// If `i ≥ n` (like slice indexing).
     pub fn acceleration(&self, i: usize, q_new_i: f64) -> f64 {
         (q_new_i - self.q_pred[i]) / self.displacement_per_acceleration
     }
 
     /// `v_{n+1} = ṽ + c_va a_{n+1}` for entry `i`.
+    ///
+    /// # Panics
+    /// If `i ≥ n` (like slice indexing).
     pub fn velocity(&self, i: usize, q_new_i: f64) -> f64 {
         self.v_pred[i] + self.velocity_per_acceleration * self.acceleration(i, q_new_i)
     }
 
     /// Writes `v_{n+1}` and `a_{n+1}` implied by `q_{n+1}`.
-    pub fn kinematics(&self, q_new: &[f64], v_new: &mut [f64], a_new: &mut [f64]) {
+    pub fn kinematics(
+        &self,
+        q_new: &[f64],
+        v_new: &mut [f64],
+        a_new: &mut [f64],
+    ) -> Result<(), IntegrateError> {
+        self.check_len("q_new", q_new.len())?;
+        self.check_len("v_new", v_new.len())?;
+        self.check_len("a_new", a_new.len())?;
         for (i, &q) in q_new.iter().enumerate() {
             a_new[i] = self.acceleration(i, q);
             v_new[i] = self.v_pred[i] + self.velocity_per_acceleration * a_new[i];
         }
+        Ok(())
     }
 
     /// The residual `R(q_{n+1})` of the balance equation, given `f_int(q_{n+1})` and the load
@@ -76,7 +123,15 @@ impl StepEquation {
         f_int_new: &[f64],
         f_ext: &[f64],
         out: &mut [f64],
-    ) {
+    ) -> Result<(), IntegrateError> {
+        self.check_shape("mass", mass)?;
+        if let Some(c) = damping {
+            self.check_shape("damping", c)?;
+        }
+        self.check_len("q_new", q_new.len())?;
+        self.check_len("f_int_new", f_int_new.len())?;
+        self.check_len("f_ext", f_ext.len())?;
+        self.check_len("out", out.len())?;
         let w_inertia = 1.0 - self.alpha_m;
         let w_force = 1.0 - self.alpha_f;
         for (i, r) in out.iter_mut().enumerate() {
@@ -93,6 +148,7 @@ impl StepEquation {
                 + self.history_force[i]
                 - f_ext[i];
         }
+        Ok(())
     }
 
     /// Writes the effective stiffness `K_eff = c_M M + c_C C + c_K K_t` into `out`.
@@ -102,7 +158,13 @@ impl StepEquation {
         damping: Option<MatRef<'_, f64>>,
         tangent: MatRef<'_, f64>,
         mut out: MatMut<'_, f64>,
-    ) {
+    ) -> Result<(), IntegrateError> {
+        self.check_shape("mass", mass)?;
+        if let Some(c) = damping {
+            self.check_shape("damping", c)?;
+        }
+        self.check_shape("tangent", tangent)?;
+        self.check_shape("out", out.as_ref())?;
         for j in 0..out.ncols() {
             for i in 0..out.nrows() {
                 let c = damping.map_or(0.0, |c| c[(i, j)]);
@@ -111,5 +173,6 @@ impl StepEquation {
                     + self.stiffness_coefficient * tangent[(i, j)];
             }
         }
+        Ok(())
     }
 }

@@ -673,7 +673,7 @@ impl StructuralStepper {
                 &w.f_int,
                 &w.f_ext,
                 &mut w.residual,
-            );
+            )?;
             finite_or_error(&w.residual, eq.t_new)?;
             residual_norm = norm_inf(&w.residual);
             self.prepare_effective_matrix(problem, eq, linear)?;
@@ -719,7 +719,7 @@ impl StructuralStepper {
             self.damping.as_ref().map(|c| c.as_ref()),
             w.tangent.as_ref(),
             w.k_eff.as_mut(),
-        );
+        )?;
         w.implicit_lu_dt = None;
         w.implicit_lu.factorize(w.k_eff.as_ref(), eq.t_new)?;
         if linear {
