@@ -171,6 +171,16 @@ fn bad_problems_and_states_are_rejected() {
     );
     assert_eq!(s.t(), 0.1, "failed calls leave the state");
 
+    let eq = s.step_equation(0.1).unwrap();
+    let mut out = [0.0; 2];
+    let err = eq.residual(s.mass(), None, &[0.0], &[0.0], &[0.0], &mut out);
+    assert_eq!(invalid_name(err.unwrap_err()), "out");
+    let (mut v, mut a) = ([0.0], [0.0; 3]);
+    assert_eq!(
+        invalid_name(eq.kinematics(&[0.0], &mut v, &mut a).unwrap_err()),
+        "a_new"
+    );
+
     let verlet =
         StructuralStepper::new(StructuralMethod::StormerVerlet, &mut p, 0.0, &[1.0], &[0.0])
             .unwrap();
