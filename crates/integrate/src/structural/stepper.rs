@@ -147,6 +147,19 @@ pub struct StructuralStepper {
     work: Workspace,
 }
 
+impl std::fmt::Debug for StructuralStepper {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("StructuralStepper")
+            .field("method", &self.method)
+            .field("t", &self.t)
+            .field("q", &self.q)
+            .field("v", &self.v)
+            .field("a", &self.a)
+            .field("stats", &self.stats)
+            .finish_non_exhaustive()
+    }
+}
+
 impl StructuralStepper {
     /// Creates a stepper at `(t0, q0, v0)` with the consistent initial acceleration
     /// `a₀ = M⁻¹(f_ext(t₀) − C v₀ − f_int(q₀))` (dynamics.md §3.5, start-up).
