@@ -151,6 +151,45 @@ impl StepEquation {
         Ok(())
     }
 
+    /// The load vector `r` of the step equation of a linear structure, `K_eff q_{n+1} = r`
+    /// (dynamics.md §4.2 writes a coupled step as `A·x = r + b·F`):
+    ///
+    /// ```text
+    /// r = c_M M q̃ + c_C C q̃ − (1 − α_f) C ṽ − h + f_ext(t_force)
+    /// ```
+    ///
+    /// obtained by expanding `R(q)` with `f_int(q) = K q`. A nonlinear part of `f_int` (or a
+    /// contact force) is added by the caller with weight `(1 − α_f)`.
+    pub fn effective_load(
+        &self,
+        mass: MatRef<'_, f64>,
+        damping: Option<MatRef<'_, f64>>,
+        f_ext: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), IntegrateError> {
+        self.check_shape("mass", mass)?;
+        if let Some(c) = damping {
+            self.check_shape("damping", c)?;
+        }
+        self.check_len("f_ext", f_ext.len())?;
+        self.check_len("out", out.len())?;
+        let n = self.dimension();
+        for (i, r) in out.iter_mut().enumerate() {
+            let inertia: f64 = (0..n).map(|j| mass[(i, j)] * self.q_pred[j]).sum();
+            let damping_force: f64 = damping.map_or(0.0, |c| {
+                (0..n)
+                    .map(|j| {
+                        c[(i, j)]
+                            * (self.damping_coefficient * self.q_pred[j]
+                                - (1.0 - self.alpha_f) * self.v_pred[j])
+                    })
+                    .sum()
+            });
+            *r = self.mass_coefficient * inertia + damping_force - self.history_force[i] + f_ext[i];
+        }
+        Ok(())
+    }
+
     /// Writes the effective stiffness `K_eff = c_M M + c_C C + c_K K_t` into `out`.
     pub fn effective_stiffness(
         &self,
