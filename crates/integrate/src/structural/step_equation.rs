@@ -17,6 +17,9 @@ use crate::IntegrateError;
 /// An outside solver (the vehicle–bridge coupling of dynamics.md §4.2) adds its own forces to
 /// `f_ext` (weighted consistently, e.g. `(1−α_f) F_{n+1} + α_f F_n`), solves `R = 0` for
 /// `q_{n+1}` and hands it to [`StructuralStepper::finish_step`](super::StructuralStepper::finish_step).
+/// For a linear structure, [`effective_load`](Self::effective_load) and
+/// [`effective_stiffness`](Self::effective_stiffness) give the linear system `K_eff q_{n+1} = r`
+/// directly.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct StepEquation {
     /// `t_n`.
