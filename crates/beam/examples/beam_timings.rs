@@ -24,6 +24,7 @@ fn main() -> Result<(), beam::BeamError> {
             EigenReduction::Mass,
             EigenReduction::ShiftedStiffness,
             EigenReduction::StiffnessSquareRoot,
+            EigenReduction::BandedSubspace,
         ] {
             let t = Instant::now();
             let m = beam::bench::fe_eigen_solve(n, 20, r)?;

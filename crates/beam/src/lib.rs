@@ -12,6 +12,7 @@
 //! * [`bench`]: fixed workloads for the benchmark driver.
 
 pub mod analytic;
+mod banded;
 pub mod bench;
 pub mod closed_form;
 pub mod damping;
