@@ -1,1 +1,146 @@
-fn main() {}
+//! `dyncontact`: contact in dynamical simulations.
+//!
+//! Subcommands: `run` (a scenario file, or the built-in default), `contact` (a quasi-static
+//! normal contact case), `bench` (performance tables).
+
+mod bench;
+mod contact_case;
+mod output;
+mod plot;
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result, anyhow, bail};
+use clap::{Parser, Subcommand, ValueEnum};
+
+/// The built-in default scenario of `dyncontact run`.
+const DEFAULT_SCENARIO: &str = include_str!("../scenarios/default.toml");
+const DEFAULT_SCENARIO_PATH: &str = "crates/dyncontact/scenarios/default.toml";
+
+#[derive(Parser)]
+#[command(
+    name = "dyncontact",
+    version,
+    about = "Contact in dynamical simulations: elastic half-space contact, time integrators, bridge dynamics"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Run a scenario file (dispatch on its `kind`), or the built-in default scenario.
+    Run {
+        /// Scenario file (TOML). Omit to run the built-in default scenario.
+        file: Option<PathBuf>,
+        /// Output directory for time series, summary and plots.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+        /// Print the JSON summary on standard output.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Solve a quasi-static normal contact case (TOML).
+    Contact {
+        /// Case file (TOML).
+        file: PathBuf,
+        /// Print one JSON object instead of the readable summary.
+        #[arg(long)]
+        json: bool,
+        /// Write pressure.csv, pressure.png and summary.json into this directory.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Benchmarks: print a table of timings.
+    Bench {
+        /// What to benchmark.
+        target: BenchTarget,
+        /// Largest grid of the contact benchmark (N × N).
+        #[arg(long, default_value_t = 1024)]
+        max_n: usize,
+    },
+}
+
+#[derive(Clone, Copy, ValueEnum)]
+enum BenchTarget {
+    /// The normal contact solver on Hertz spheres, N = 64 … 1024.
+    Contact,
+}
+
+fn main() {
+    if let Err(e) = run_cli() {
+        eprintln!("error: {e:#}");
+        std::process::exit(1);
+    }
+}
+
+fn run_cli() -> Result<()> {
+    let cli = Cli::parse();
+    match cli.command {
+        Command::Run { file, out, json } => run_scenario(file.as_deref(), &out, json),
+        Command::Contact { file, json, out } => {
+            let text = read(&file)?;
+            run_contact(&text, base_dir(&file), json, out.as_deref())
+        }
+        Command::Bench { target, max_n } => match target {
+            BenchTarget::Contact => bench::contact(max_n),
+        },
+    }
+}
+
+fn read(path: &Path) -> Result<String> {
+    std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))
+}
+
+fn base_dir(path: &Path) -> &Path {
+    path.parent().unwrap_or(Path::new("."))
+}
+
+fn run_scenario(file: Option<&Path>, out: &Path, json: bool) -> Result<()> {
+    let (text, base) = match file {
+        Some(f) => (read(f)?, base_dir(f).to_path_buf()),
+        None => {
+            eprintln!("running the built-in default scenario ({DEFAULT_SCENARIO_PATH})");
+            (DEFAULT_SCENARIO.to_string(), PathBuf::from("."))
+        }
+    };
+    let table: toml::Table =
+        toml::from_str(&text).map_err(|e| anyhow!("invalid scenario file: {e}"))?;
+    let kind = match table.get("kind") {
+        Some(toml::Value::String(k)) => k.clone(),
+        Some(other) => bail!("`kind` must be a string, found {other}"),
+        None => bail!("missing `kind`: expected \"contact\""),
+    };
+    match kind.as_str() {
+        "contact" => run_contact(&text, &base, json, Some(out)),
+        other => bail!("`kind` = \"{other}\": expected \"contact\""),
+    }
+}
+
+fn run_contact(text: &str, base: &Path, json: bool, out: Option<&Path>) -> Result<()> {
+    let case = contact_case::parse(text, base)?;
+    let outcome = contact_case::solve(&case)?;
+    if json {
+        println!("{}", serde_json::to_string_pretty(&outcome.summary)?);
+    } else {
+        contact_case::print_summary(&outcome.summary);
+    }
+    if let Some(dir) = out {
+        contact_case::write_outputs(dir, &outcome)?;
+        if !json {
+            println!(
+                "wrote {}/pressure.csv, pressure.png, pressure_profile.png, summary.json",
+                dir.display()
+            );
+        }
+    }
+    if !outcome.summary.converged {
+        bail!(
+            "NormCG did not converge in {} iterations (relative change {:.3e}); the output is marked converged = false",
+            outcome.summary.iterations,
+            outcome.summary.residual
+        );
+    }
+    Ok(())
+}

@@ -25,6 +25,9 @@ use rustfft::{Fft, FftPlanner};
 /// than it saves).
 const PARALLEL_THRESHOLD: usize = 128 * 128;
 
+/// Tile edge of the cache-blocked transposes between row and column layouts.
+const TILE: usize = 32;
+
 /// Spectrum of a convolution kernel in the operator's layout: `(nx + 1)` columns of `2ny`
 /// complex values, already scaled by the inverse-FFT normalisation 1/(4 nx ny).
 #[derive(Debug, Clone)]
@@ -200,7 +203,8 @@ impl FftConvolution {
                 }
             });
 
-        // 2. Scatter row spectra into columns (zero rows ny..2ny are the padding).
+        // 2. Scatter row spectra into columns (zero rows ny..2ny are the padding). A tiled
+        //    transpose keeps both the strided reads and the writes in cache.
         let (ny, row_spectra) = (self.ny, &self.row_spectra);
         let cols_per_task = kx.div_ceil(self.tasks);
         self.columns
@@ -208,11 +212,19 @@ impl FftConvolution {
             .enumerate()
             .with_max_len(1)
             .for_each(|(task, cols)| {
-                for (c, col) in cols.chunks_mut(my).enumerate() {
-                    let k = task * cols_per_task + c;
-                    for (j, v) in col[..ny].iter_mut().enumerate() {
-                        *v = row_spectra[j * kx + k];
+                let first = task * cols_per_task;
+                let count = cols.len() / my;
+                for j0 in (0..ny).step_by(TILE) {
+                    let j1 = (j0 + TILE).min(ny);
+                    for c in 0..count {
+                        let k = first + c;
+                        let col = &mut cols[c * my..(c + 1) * my];
+                        for j in j0..j1 {
+                            col[j] = row_spectra[j * kx + k];
+                        }
                     }
+                }
+                for col in cols.chunks_mut(my) {
                     col[ny..].fill(Complex64::default());
                 }
             });
@@ -233,26 +245,39 @@ impl FftConvolution {
                 inv.process_with_scratch(cols, scratch);
             });
 
-        // 4. Gather the kept rows and transform them back.
-        let (columns, c2r) = (&self.columns, &self.c2r);
+        // 4. Gather the kept rows (tiled transpose) and transform them back.
+        let columns = &self.columns;
+        self.row_spectra
+            .par_chunks_mut(rows_per_task * kx)
+            .enumerate()
+            .with_max_len(1)
+            .for_each(|(task, specs)| {
+                let first = task * rows_per_task;
+                let count = specs.len() / kx;
+                for k0 in (0..kx).step_by(TILE) {
+                    let k1 = (k0 + TILE).min(kx);
+                    for r in 0..count {
+                        let j = first + r;
+                        let spec = &mut specs[r * kx..(r + 1) * kx];
+                        for k in k0..k1 {
+                            spec[k] = columns[k * my + j];
+                        }
+                    }
+                }
+            });
+        let c2r = &self.c2r;
         self.row_spectra
             .par_chunks_mut(rows_per_task * kx)
             .zip(self.rows.par_chunks_mut(rows_per_task * mx))
             .zip(output.par_chunks_mut(rows_per_task * nx))
             .zip(self.row_scratch.par_chunks_mut(self.row_scratch_len))
-            .enumerate()
             .with_max_len(1)
-            .for_each(|(task, (((specs, rows), out), scratch))| {
-                for (r, ((spec, row), dst)) in specs
+            .for_each(|(((specs, rows), out), scratch)| {
+                for ((spec, row), dst) in specs
                     .chunks_mut(kx)
                     .zip(rows.chunks_mut(mx))
                     .zip(out.chunks_mut(nx))
-                    .enumerate()
                 {
-                    let j = task * rows_per_task + r;
-                    for (k, v) in spec.iter_mut().enumerate() {
-                        *v = columns[k * my + j];
-                    }
                     // A real signal has real DC and Nyquist coefficients; drop round-off.
                     spec[0].im = 0.0;
                     spec[kx - 1].im = 0.0;

@@ -19,6 +19,9 @@ pub enum GapShape {
     /// A cylinder of radius R with its axis along y and length L on a plane:
     /// h = R − √(R² − x²) for |y| ≤ L/2, excluded beyond its ends.
     Cylinder { radius: f64, length: f64 },
+    /// A flat circular punch of radius a with rounded edges of radius R_e:
+    /// h = 0 for r ≤ a, h = (r − a)²/(2R_e) beyond (non-Hertzian).
+    Punch { radius: f64, edge_radius: f64 },
     /// Values per element of a given grid, x fastest.
     Table { values: Vec<f64> },
 }
@@ -37,6 +40,13 @@ impl GapShape {
             GapShape::Cylinder { radius, length } => {
                 positive("radius", *radius)?;
                 positive("length", *length)?;
+            }
+            GapShape::Punch {
+                radius,
+                edge_radius,
+            } => {
+                positive("radius", *radius)?;
+                positive("edge_radius", *edge_radius)?;
             }
             GapShape::Table { values } => {
                 if values.iter().any(|v| !v.is_finite()) {
@@ -72,6 +82,17 @@ impl GapShape {
                     f64::INFINITY
                 }
             }),
+            GapShape::Punch {
+                radius,
+                edge_radius,
+            } => grid.sample(|x, y| {
+                let r = x.hypot(y);
+                if r <= *radius {
+                    0.0
+                } else {
+                    (r - radius).powi(2) / (2.0 * edge_radius)
+                }
+            }),
             GapShape::Table { values } => {
                 if values.len() != grid.len() {
                     return Err(ContactError::SizeMismatch {
@@ -92,7 +113,7 @@ impl GapShape {
             GapShape::Quadratic { a, b } => Some((a, b)),
             GapShape::Sphere { radius } => Some((0.5 / radius, 0.5 / radius)),
             GapShape::Cylinder { radius, .. } => Some((0.5 / radius, 0.0)),
-            GapShape::Table { .. } => None,
+            GapShape::Punch { .. } | GapShape::Table { .. } => None,
         }
     }
 
@@ -135,6 +156,22 @@ pub fn auto_grid(
         });
     }
     match (shape, load) {
+        (
+            GapShape::Punch {
+                radius,
+                edge_radius,
+            },
+            load,
+        ) => {
+            // The patch is the flat face plus the part of the rounding pressed in; bound it by
+            // the overlap at the approach of a rigid flat punch (F = 2aE*δ) plus a margin.
+            let d = match load {
+                NormalLoad::Force(f) => positive("force", f)? / (2.0 * radius * material.e_star),
+                NormalLoad::Approach(d) => positive("approach", d)?,
+            };
+            let half = AUTO_GRID_MARGIN * (radius + (2.0 * edge_radius * d).sqrt());
+            Grid::centred(n, n, 2.0 * half / n as f64, 2.0 * half / n as f64, 0.0, 0.0)
+        }
         (GapShape::Table { .. }, _) => Err(ContactError::InvalidParameter {
             name: "grid",
             value: f64::NAN,

@@ -1,0 +1,119 @@
+//! `dyncontact bench ...`: performance tables (release builds).
+
+use std::time::Instant;
+
+use anyhow::{Result, anyhow};
+use halfspace::convolution::FftConvolution;
+use halfspace::influence::circulant_kernel;
+use halfspace::{GapShape, Grid, Hertz, Material, NormalLoad, NormalSolver, SolverOptions};
+
+/// Best-of-`repeats` wall time of `f` in seconds.
+fn best_of(repeats: usize, mut f: impl FnMut()) -> f64 {
+    (0..repeats)
+        .map(|_| {
+            let t = Instant::now();
+            f();
+            t.elapsed().as_secs_f64()
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Hertz sphere (steel on steel, R = 10 mm, F = 1 kN) on N × N grids whose half-width is
+/// 1/0.3 of the contact radius, solved to tol = 1e-8 for a prescribed approach and for a
+/// prescribed force (cold starts).
+pub fn contact(max_n: usize) -> Result<()> {
+    let material = Material::identical(210e9, 0.3).map_err(|e| anyhow!("{e}"))?;
+    let radius = 0.01;
+    let force = 1000.0;
+    let hertz = Hertz::sphere(radius, material.e_star, force).map_err(|e| anyhow!("{e}"))?;
+    // Hertz's own model of the sphere: the paraboloid h = r²/(2R).
+    let shape = GapShape::Quadratic {
+        a: 0.5 / radius,
+        b: 0.5 / radius,
+    };
+    println!(
+        "Hertz sphere, R = {radius} m, F = {force} N, steel/steel; contact radius a = {:.4e} m = 0.3 grid half-width; tol 1e-8; {} rayon threads",
+        hertz.a,
+        rayon::current_num_threads()
+    );
+    println!(
+        "{:>6} {:>9} {:>6} {:>6} {:>10} {:>10} {:>10} {:>11} {:>11} {:>11} {:>6}",
+        "N",
+        "load",
+        "iter",
+        "conv",
+        "solve ms",
+        "ms/iter",
+        "conv ms",
+        "err δ",
+        "err p0",
+        "dF/dδ ms",
+        "s-iter"
+    );
+    let mut n = 64;
+    while n <= max_n {
+        let half = hertz.a / 0.3;
+        let d = 2.0 * half / n as f64;
+        let grid = Grid::centred(n, n, d, d, 0.0, 0.0).map_err(|e| anyhow!("{e}"))?;
+        let gap = shape.sample(&grid).map_err(|e| anyhow!("{e}"))?;
+        // One padded convolution.
+        let mut conv = FftConvolution::new(n, n);
+        let spectrum = conv.kernel_spectrum(&circulant_kernel(&material, &grid));
+        let p: Vec<f64> = (0..grid.len()).map(|k| (k % 7) as f64).collect();
+        let mut u = vec![0.0; grid.len()];
+        conv.apply(&spectrum, &p, &mut u);
+        let conv_time = best_of(5, || conv.apply(&spectrum, &p, &mut u));
+        for load in [
+            NormalLoad::Approach(hertz.approach),
+            NormalLoad::Force(force),
+        ] {
+            let mut solver = NormalSolver::new(grid, material).map_err(|e| anyhow!("{e}"))?;
+            let cold = SolverOptions {
+                warm_start: false,
+                sensitivity: false,
+                ..Default::default()
+            };
+            let t = Instant::now();
+            let sol = solver
+                .solve(&gap, load, &cold)
+                .map_err(|e| anyhow!("N = {n}: {e}"))?;
+            let solve_time = t.elapsed().as_secs_f64();
+            let convolutions = solver.convolutions();
+            let with_sens = SolverOptions {
+                warm_start: false,
+                ..Default::default()
+            };
+            let t = Instant::now();
+            let sens = solver
+                .solve(&gap, load, &with_sens)
+                .map_err(|e| anyhow!("N = {n}: {e}"))?;
+            let sens_time = t.elapsed().as_secs_f64() - solve_time;
+            let label = match load {
+                NormalLoad::Approach(_) => "approach",
+                NormalLoad::Force(_) => "force",
+            };
+            println!(
+                "{:>6} {:>9} {:>6} {:>6} {:>10.2} {:>10.3} {:>10.3} {:>11.2e} {:>11.2e} {:>11.2} {:>6}",
+                n,
+                label,
+                sol.iterations,
+                convolutions,
+                1e3 * solve_time,
+                1e3 * solve_time / sol.iterations as f64,
+                1e3 * conv_time,
+                sol.approach / hertz.approach - 1.0,
+                sol.max_pressure / hertz.max_pressure - 1.0,
+                1e3 * sens_time.max(0.0),
+                sens.sensitivity_iterations,
+            );
+        }
+        n *= 2;
+    }
+    println!(
+        "conv = FFT convolutions in the first (cold, no sensitivity) solve; err = relative error against Hertz;"
+    );
+    println!(
+        "dF/dδ ms, s-iter = extra time and CG iterations of the linearised sensitivity solve (tol 1e-10)."
+    );
+    Ok(())
+}
