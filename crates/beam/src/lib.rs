@@ -10,6 +10,26 @@
 //! * [`closed_form`]: Frýba's series for a moving force on a simply supported beam;
 //! * [`sdof`]: the exact piecewise-linear (Nigam–Jennings-type) modal step;
 //! * [`bench`]: fixed workloads for the benchmark driver.
+//!
+//! ```
+//! use beam::{AnalyticBeam, ModalBasis, ModalDamping, MovingLoadSettings, MovingLoads, Support, UniformBeam};
+//!
+//! // Frýba's 25 m bridge (dynamics.md §1.3) and a 56.4 kN force at 27.78 m/s.
+//! let bridge = UniformBeam::new(25.0, 2.87e9 * 2.90, 2303.0)?;
+//! let modes = AnalyticBeam::new(Support::SimplySupported, bridge, 10)?;
+//! assert!((modes.circular_frequencies()[0] - 30.02).abs() < 0.01);
+//! let loads = MovingLoads::single(56.4e3, 27.78)?;
+//! let run = beam::simulate_moving_loads(
+//!     &modes,
+//!     &ModalDamping::Uniform(0.02),
+//!     &loads,
+//!     &MovingLoadSettings::new(1e-3, 0.2),
+//!     &[12.5],
+//! )?;
+//! let daf = run.dynamic_amplification(0)?;
+//! assert!(daf > 1.0 && daf < 1.2);
+//! # Ok::<(), beam::BeamError>(())
+//! ```
 
 pub mod analytic;
 mod banded;

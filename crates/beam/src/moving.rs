@@ -405,6 +405,9 @@ fn record(
     }
 }
 
+/// Upper limit on the number of time steps of one run (guards the output preallocation).
+pub const MAX_STEPS: usize = 1_000_000_000;
+
 /// Simulate `loads` crossing the beam described by `basis` with modal `damping`, recording the
 /// response at `points`. The beam starts at rest; the run ends `settings.free_vibration_time`
 /// after the last axle has left. All buffers are allocated before the time loop.
@@ -440,7 +443,15 @@ pub fn simulate_moving_loads<B: ModalBasis + ?Sized>(
     };
     let op = OutputOperator::new(basis, points)?;
     let exit_time = loads.exit_time(basis.length());
-    let n_steps = ((exit_time + free) / dt).ceil() as usize;
+    let steps = ((exit_time + free) / dt).ceil();
+    if !steps.is_finite() || steps > MAX_STEPS as f64 {
+        return Err(BeamError::InvalidParameter {
+            name: "dt",
+            value: dt,
+            reason: "gives more than 1e9 time steps for the passage and free vibration",
+        });
+    }
+    let n_steps = steps as usize;
     let n_samples = n_steps / settings.output_every + 2;
     let np = points.len();
     let mut out = MovingLoadResponse {

@@ -296,3 +296,14 @@ fn invalid_moving_loads_are_rejected() {
         simulate_moving_loads(&basis, &ModalDamping::Uniform(-0.1), &loads, &ok, &[1.0]).is_err()
     );
 }
+
+/// A time step that would need more than `MAX_STEPS` steps is rejected, not allocated.
+#[test]
+fn absurd_time_step_is_rejected() {
+    let basis = AnalyticBeam::new(Support::SimplySupported, fryba(), 2).unwrap();
+    let loads = MovingLoads::single(FORCE, 20.0).unwrap();
+    let settings = MovingLoadSettings::new(1e-300, 0.0);
+    assert!(
+        simulate_moving_loads(&basis, &ModalDamping::Undamped, &loads, &settings, &[1.0]).is_err()
+    );
+}
