@@ -1,1 +1,11 @@
-//! sim (in progress)
+//! Scenarios of dyncontact: the physics crates (half-space contact, integrators, beam)
+//! combined into simulations. No I/O: the CLI reads scenario files and writes results.
+//!
+//! * [`ball_drop`]: a rigid or elastic ball dropped on an elastic half-space,
+//!   m z'' = F_n(δ) − m g (issue "time integration library and the ball drop");
+//! * [`vehicle_bridge`]: wheels (moving force, moving mass, quarter car, several axles) over a
+//!   modal Euler–Bernoulli bridge with Hertz or boundary-element contact, coupled every time
+//!   step (Picard, the seed's quasi-Newton/Sherman–Morrison, Woodbury, Newton).
+
+pub mod ball_drop;
+pub mod vehicle_bridge;

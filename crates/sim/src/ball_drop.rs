@@ -1,0 +1,1 @@
+//! Ball drop on an elastic half-space (being written).

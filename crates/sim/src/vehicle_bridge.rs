@@ -1,0 +1,1 @@
+//! Vehicle over a bridge with contact, coupled every time step (being written).
