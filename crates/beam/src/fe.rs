@@ -758,7 +758,8 @@ pub enum EigenReduction {
     StiffnessSquareRoot,
     /// Subspace iteration with a banded Cholesky of K + σM and a square-root Rayleigh–Ritz step
     /// (no dense n × n factorisation). Most accurate (ω₁ error 3e-13 at 1000 elements, the
-    /// Rayleigh quotient error is ε²κ) and fastest for few modes (0.7 s at 1000 elements).
+    /// Rayleigh quotient error is ε²κ) and fastest for few modes (1000 elements, release build:
+    /// 0.06 s for 5 modes, 0.18 s for 20, 0.7 s for 50).
     #[default]
     BandedSubspace,
 }

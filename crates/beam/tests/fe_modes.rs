@@ -438,6 +438,20 @@ fn eigen_reductions_agree_and_fine_meshes_stay_accurate() {
             20,
         )
         .unwrap(),
+        // Four equal spans: the first four frequencies form a tight cluster (between the SS and
+        // the clamped–pinned span frequencies), the hard case for subspace iteration.
+        FeBeam::new(
+            &uniform(4.0 * L),
+            &(0..=4)
+                .map(|k| PointSupport {
+                    x: k as f64 * L,
+                    kind: SupportKind::Pinned,
+                })
+                .collect::<Vec<_>>(),
+            &[],
+            40,
+        )
+        .unwrap(),
     ];
     for fe in &cases {
         let a = fe.modes_with(5, EigenReduction::Mass).unwrap();
