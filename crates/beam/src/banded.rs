@@ -14,30 +14,51 @@ pub(crate) struct SymmetricBand {
 }
 
 impl SymmetricBand {
-    /// Half-bandwidth of a dense symmetric matrix (largest |i − j| with A[i, j] ≠ 0).
-    pub(crate) fn half_bandwidth(a: &Mat<f64>) -> usize {
-        let n = a.nrows();
-        let mut b = 0;
-        for j in 0..n {
-            for i in j..n {
-                if a[(i, j)] != 0.0 {
-                    b = b.max(i - j);
-                }
-            }
+    /// The n × n zero matrix with half-bandwidth b.
+    pub(crate) fn zeros(n: usize, b: usize) -> Self {
+        Self {
+            n,
+            b,
+            band: vec![0.0; n * (b + 1)],
         }
-        b
     }
 
-    /// The lower band of `a` with half-bandwidth `b` (entries outside are ignored).
-    pub(crate) fn from_dense(a: &Mat<f64>, b: usize) -> Self {
-        let n = a.nrows();
-        let mut band = vec![0.0; n * (b + 1)];
-        for i in 0..n {
-            for j in i.saturating_sub(b)..=i {
-                band[i * (b + 1) + (j + b - i)] = a[(i, j)];
-            }
+    /// Dimension n.
+    pub(crate) fn n(&self) -> usize {
+        self.n
+    }
+
+    /// A[i, j] += v (and A[j, i]); requires |i − j| ≤ b.
+    pub(crate) fn add(&mut self, i: usize, j: usize, v: f64) {
+        let (i, j) = if i >= j { (i, j) } else { (j, i) };
+        debug_assert!(i - j <= self.b);
+        self.band[i * (self.b + 1) + (j + self.b - i)] += v;
+    }
+
+    /// Entry A[i, j] (zero outside the band).
+    pub(crate) fn entry(&self, i: usize, j: usize) -> f64 {
+        let (i, j) = if i >= j { (i, j) } else { (j, i) };
+        if i - j > self.b { 0.0 } else { self.get(i, j) }
+    }
+
+    /// self + σ · other (same dimension and bandwidth).
+    pub(crate) fn plus_scaled(&self, other: &Self, sigma: f64) -> Self {
+        let band = self
+            .band
+            .iter()
+            .zip(&other.band)
+            .map(|(a, b)| a + sigma * b)
+            .collect();
+        Self {
+            n: self.n,
+            b: self.b,
+            band,
         }
-        Self { n, b, band }
+    }
+
+    /// The full dense symmetric matrix.
+    pub(crate) fn to_dense(&self) -> Mat<f64> {
+        Mat::from_fn(self.n, self.n, |i, j| self.entry(i, j))
     }
 
     #[inline]
@@ -134,8 +155,13 @@ mod tests {
                     0.0
                 }
             });
-            assert_eq!(SymmetricBand::half_bandwidth(&a), b);
-            let band = SymmetricBand::from_dense(&a, b);
+            let mut band = SymmetricBand::zeros(n, b);
+            for i in 0..n {
+                for j in i.saturating_sub(b)..=i {
+                    band.add(i, j, a[(i, j)]);
+                }
+            }
+            assert_eq!(band.to_dense(), a);
             let r = Mat::from_fn(n, 2, |i, c| ((i + 3 * c) as f64).sin());
             let mut x = r.clone();
             band.clone().cholesky().unwrap().solve_in_place(&mut x);
@@ -149,7 +175,9 @@ mod tests {
                 }
             }
         }
-        let singular = Mat::from_fn(3, 3, |i, j| if i == j && i < 2 { 1.0 } else { 0.0 });
-        assert!(SymmetricBand::from_dense(&singular, 0).cholesky().is_err());
+        let mut singular = SymmetricBand::zeros(3, 0);
+        singular.add(0, 0, 1.0);
+        singular.add(1, 1, 1.0);
+        assert!(singular.cholesky().is_err());
     }
 }
