@@ -4,7 +4,11 @@
 //! normal contact case), `bench` (performance tables).
 
 mod bench;
+/// The `[bridge]` block shared by `modes`, `moving_load` and `vehicle_bridge` scenarios.
+mod bridge;
 mod contact_case;
+mod modes_cli;
+mod moving_load_cli;
 mod output;
 mod plot;
 
@@ -15,6 +19,8 @@ use clap::{Parser, Subcommand, ValueEnum};
 
 /// The built-in default scenario of `dyncontact run`.
 const DEFAULT_SCENARIO: &str = include_str!("../scenarios/default.toml");
+/// Scenario kinds `run` understands (keep in step with `run_scenario`).
+const SCENARIO_KINDS: &[&str] = &["contact", "moving_load"];
 const DEFAULT_SCENARIO_PATH: &str = "crates/dyncontact/scenarios/default.toml";
 
 #[derive(Parser)]
@@ -52,6 +58,17 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// Modal analysis of a bridge: table of n, βL, ω, f (from a file's [bridge] section).
+    Modes {
+        /// Bridge file (TOML with a [bridge] section, or any scenario file that has one).
+        file: PathBuf,
+        /// Print JSON (`modes`: list of `n`, `beta_l`, `omega`, `frequency`).
+        #[arg(long)]
+        json: bool,
+        /// Write mode_shapes.csv, modes.png and modes.json into this directory.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
     /// Benchmarks: print a table of timings.
     Bench {
         /// What to benchmark.
@@ -66,12 +83,26 @@ enum Command {
 enum BenchTarget {
     /// The normal contact solver on Hertz spheres, N = 64 … 1024.
     Contact,
+    /// Bridge modes: mode evaluation, FE eigen-solve, a moving-load run.
+    Beam,
 }
 
 fn main() {
+    restore_default_sigpipe();
     if let Err(e) = run_cli() {
         eprintln!("error: {e:#}");
         std::process::exit(1);
+    }
+}
+
+/// Let `dyncontact ... | head` end quietly like other Unix tools instead of panicking on a
+/// closed pipe (Rust ignores SIGPIPE by default).
+fn restore_default_sigpipe() {
+    #[cfg(unix)]
+    // SAFETY: called first thing in main, before any other thread exists; restoring the default
+    // disposition of SIGPIPE has no other effect on the program.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
 }
 
@@ -83,8 +114,10 @@ fn run_cli() -> Result<()> {
             let text = read(&file)?;
             run_contact(&text, base_dir(&file), json, out.as_deref())
         }
+        Command::Modes { file, json, out } => modes_cli::run(&read(&file)?, json, out.as_deref()),
         Command::Bench { target, max_n } => match target {
             BenchTarget::Contact => bench::contact(max_n),
+            BenchTarget::Beam => bench::beam(),
         },
     }
 }
@@ -110,11 +143,18 @@ fn run_scenario(file: Option<&Path>, out: &Path, json: bool) -> Result<()> {
     let kind = match table.get("kind") {
         Some(toml::Value::String(k)) => k.clone(),
         Some(other) => bail!("`kind` must be a string, found {other}"),
-        None => bail!("missing `kind`: expected \"contact\""),
+        None => bail!(
+            "missing `kind` (known kinds: {})",
+            SCENARIO_KINDS.join(", ")
+        ),
     };
     match kind.as_str() {
         "contact" => run_contact(&text, &base, json, Some(out)),
-        other => bail!("`kind` = \"{other}\": expected \"contact\""),
+        "moving_load" => moving_load_cli::run(&text, out, json),
+        other => bail!(
+            "unknown `kind` = \"{other}\" (known kinds: {})",
+            SCENARIO_KINDS.join(", ")
+        ),
     }
 }
 

@@ -1,0 +1,136 @@
+//! `dyncontact modes BRIDGE.toml`: the bridge's modal table, mode shapes and a plot.
+
+use std::path::Path;
+
+use anyhow::{Result, anyhow, bail};
+use beam::Derivative;
+use serde::Serialize;
+
+use crate::bridge::{self, Bridge};
+use crate::{output, plot};
+
+#[derive(Debug, Serialize)]
+pub struct ModeRow {
+    /// Mode number (1-based; rigid-body modes first for a free–free beam).
+    pub n: usize,
+    /// Dimensionless root β_n L.
+    pub beta_l: f64,
+    /// Circular frequency ω_n [rad/s].
+    pub omega: f64,
+    /// Frequency f_n = ω_n/(2π) [Hz].
+    pub frequency: f64,
+}
+
+#[derive(Debug, Serialize)]
+pub struct ModesSummary {
+    pub bridge: String,
+    pub modes: Vec<ModeRow>,
+}
+
+/// Read a file's `[bridge]` block. Other top-level keys are accepted only in a scenario file
+/// (one with `kind`), where they belong to the scenario.
+pub fn read_bridge(text: &str) -> Result<Bridge> {
+    let table: toml::Table =
+        toml::from_str(text).map_err(|e| anyhow!("invalid bridge file: {e}"))?;
+    if !table.contains_key("kind")
+        && let Some(other) = table.keys().find(|k| k.as_str() != "bridge")
+    {
+        bail!(
+            "unknown key `{other}`: a bridge file holds only a [bridge] section (or is a scenario with `kind`)"
+        );
+    }
+    bridge::from_table(&table)?.build()
+}
+
+pub fn summary(b: &Bridge) -> ModesSummary {
+    let omegas = b.basis.circular_frequencies();
+    ModesSummary {
+        bridge: b.description.clone(),
+        modes: (0..omegas.len())
+            .map(|j| ModeRow {
+                n: j + 1,
+                beta_l: b.beta_l(j),
+                omega: omegas[j],
+                frequency: omegas[j] / (2.0 * std::f64::consts::PI),
+            })
+            .collect(),
+    }
+}
+
+pub fn print_table(s: &ModesSummary) {
+    println!("{}", s.bridge);
+    println!(
+        "{:>5} {:>22} {:>16} {:>14}",
+        "n", "beta L", "omega [rad/s]", "f [Hz]"
+    );
+    for m in &s.modes {
+        println!(
+            "{:>5} {:>22.16} {:>16.6} {:>14.6}",
+            m.n, m.beta_l, m.omega, m.frequency
+        );
+    }
+}
+
+/// Write `mode_shapes.csv` (x and w_1 … w_m at 401 points) and `modes.png` (first 6 modes).
+pub fn write_outputs(dir: &Path, b: &Bridge) -> Result<()> {
+    output::ensure_dir(dir)?;
+    let n = b.basis.n_modes();
+    let length = b.basis.length();
+    let samples = 401;
+    let mut shapes = vec![0.0; n];
+    let mut rows = Vec::with_capacity(samples);
+    for k in 0..samples {
+        let x = length * k as f64 / (samples - 1) as f64;
+        b.basis
+            .eval_all(x, Derivative::Shape, &mut shapes)
+            .map_err(|e| anyhow!("{e}"))?;
+        let mut row = vec![x];
+        row.extend_from_slice(&shapes);
+        rows.push(row);
+    }
+    let names: Vec<String> = std::iter::once("x".to_string())
+        .chain((1..=n).map(|j| format!("w{j}")))
+        .collect();
+    let header: Vec<&str> = names.iter().map(String::as_str).collect();
+    let shown = n.min(6);
+    let series = (0..shown)
+        .map(|j| {
+            let f = b.basis.circular_frequencies()[j] / (2.0 * std::f64::consts::PI);
+            plot::Series::new(
+                format!("mode {} ({f:.2} Hz)", j + 1),
+                rows.iter().map(|r| (r[0], r[j + 1])).collect(),
+            )
+        })
+        .collect();
+    output::write_csv(&dir.join("mode_shapes.csv"), &header, rows)?;
+    plot::panels(
+        &dir.join("modes.png"),
+        &[plot::Panel {
+            title: "mass-normalised mode shapes".into(),
+            x_label: "x [m]".into(),
+            y_label: "w [1/√kg]".into(),
+            series,
+        }],
+    )
+}
+
+pub fn run(text: &str, json: bool, out: Option<&Path>) -> Result<()> {
+    let b = read_bridge(text)?;
+    let s = summary(&b);
+    if json {
+        println!("{}", serde_json::to_string_pretty(&s)?);
+    } else {
+        print_table(&s);
+    }
+    if let Some(dir) = out {
+        write_outputs(dir, &b)?;
+        output::write_json(&dir.join("modes.json"), &s)?;
+        if !json {
+            println!(
+                "wrote {}/mode_shapes.csv, modes.png, modes.json",
+                dir.display()
+            );
+        }
+    }
+    Ok(())
+}
