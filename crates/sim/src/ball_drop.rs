@@ -1,1 +1,758 @@
-//! Ball drop on an elastic half-space (being written).
+//! A rigid or elastic ball dropped on an elastic half-space (dynamics.md §1.4,
+//! contact.md §4.10).
+//!
+//! # Model
+//! One degree of freedom: `z` [m] is the height of the ball's lowest point above the surface
+//! (upward positive), `v = z'` [m/s]. The approach is `δ = max(0, −z)` and
+//!
+//! ```text
+//! m z'' = F(δ, δ') − m g,        F = max(0, F_el(δ) + c δ')  for δ > 0,  F = 0 otherwise,
+//! ```
+//!
+//! with the elastic law `F_el` either Hertz's closed form `K δ^{3/2}` (`K = (4/3)E*√R` for a
+//! sphere, the elliptic Hertz solution for an ellipsoid; Johnson 1985 §11.4, contact.md §4.1)
+//! or the boundary-element half-space solver at prescribed approach ([`ContactForce::bem`]),
+//! and optional linear surface damping `c` [N·s/m]. `1/E* = (1−ν₁²)/E₁ + (1−ν₂²)/E₂`
+//! (a rigid ball has `1/E₁ = 0`).
+//!
+//! # Integrators
+//! * first-order methods of [`integrate::ode`] (euler, rk4, dopri5, backward_euler, radau5,
+//!   bdf, adams) on `y = (z, v, D)`, where `D' = (F − F_el)·δ'` accumulates the dissipated
+//!   energy. Contact start (`z` falling through 0, guarded by [`integrate::ode::events`]' contact
+//!   guard with `h_c = T_c/50` so that no bounce is stepped over), maximum approach (`v` rising
+//!   through 0), peak force (`dF/dt` falling through 0, with damping) and contact end are
+//!   events located on the methods' dense output;
+//! * structural methods of [`integrate::structural`] (verlet, leapfrog, newmark, hht,
+//!   generalized_alpha) on `m z'' + f_int(z) = −m g` with `f_int(z) = −F_el(−z)` and its
+//!   tangent; fixed step `dt` in contact and `dt_flight` in free flight (a flight step that
+//!   ends below the surface is undone and replaced by a step that lands on the crossing of the
+//!   free-flight parabola, which these schemes integrate exactly). Events are
+//!   located by root finding on the dense output. These schemes take no velocity-dependent
+//!   force, so damping requires a first-order method.
+//!
+//! # Energy
+//! `E = ½ m v² + m g z + W(δ) + D` with `W = ∫₀^δ F_el dδ'` (`(2/5) K δ^{5/2}` for Hertz,
+//! Clapeyron's `½ ΔA Σ p u` for the BEM solution). `energy_drift = (E(t_end) − E₀)/E_ref` with
+//! `E_ref = ½ m v_impact²`, `v_impact² = v₀² + 2 g h` (the kinetic energy at the first impact),
+//! or `m g R` when that is zero, or 1 J when both are.
+//!
+//! Units are SI throughout.
+
+mod first_order;
+mod force;
+mod second_order;
+
+use std::time::Instant;
+
+pub use force::{ContactForce, ElasticForce, hertz_constant};
+use halfspace::{Body, ContactError, Material};
+use integrate::{IntegrateError, Method, StructuralMethod};
+use thiserror::Error;
+
+/// Failure of a ball-drop simulation. `key` names the scenario-file key at fault.
+#[derive(Debug, Error)]
+#[non_exhaustive]
+pub enum BallDropError {
+    /// A parameter is out of range.
+    #[error("invalid `{key}` = {value}: {reason}")]
+    InvalidParameter {
+        key: &'static str,
+        value: f64,
+        reason: String,
+    },
+    /// A material or geometry rejected by the contact crate.
+    #[error("`{key}`: {source}")]
+    Material {
+        key: &'static str,
+        #[source]
+        source: ContactError,
+    },
+    /// The boundary-element solve failed inside the time integration.
+    #[error("boundary-element contact solve failed at approach δ = {approach:e} m: {source}")]
+    ContactSolve {
+        approach: f64,
+        #[source]
+        source: ContactError,
+    },
+    /// The time integrator failed.
+    #[error("time integration failed: {0}")]
+    Integration(#[from] IntegrateError),
+}
+
+fn invalid(key: &'static str, value: f64, reason: &str) -> BallDropError {
+    BallDropError::InvalidParameter {
+        key,
+        value,
+        reason: reason.to_string(),
+    }
+}
+
+/// Geometry of the ball near its lowest point.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum BallShape {
+    /// A sphere of radius `radius` [m].
+    Sphere { radius: f64 },
+    /// A body with principal radii of curvature `radius_x`, `radius_y` [m] at its lowest
+    /// point (Hertz's elliptic contact).
+    Ellipsoid { radius_x: f64, radius_y: f64 },
+}
+
+/// The elastic force law.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ForceModel {
+    /// `F = K δ^{3/2}`.
+    Hertz,
+    /// The half-space solver on `elements × elements` elements, NormCG tolerance `tol`.
+    Bem { elements: usize, tol: f64 },
+}
+
+/// The time integrator and its settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Integrator {
+    /// A method of [`integrate::ode`]. euler, rk4 and backward_euler take fixed steps `dt` [s];
+    /// dopri5, radau5, bdf and adams are adaptive with `rtol`, `atol` [m, m/s, J].
+    Ode {
+        method: Method,
+        rtol: f64,
+        atol: f64,
+        dt: f64,
+        /// Contact-guard step `h_c` [s] (default: `T_c/50` from the Hertz contact time at the
+        /// first impact speed; for the fixed-step methods always `dt`).
+        guard_step: Option<f64>,
+        /// Largest step of an adaptive method [s] (default unbounded).
+        max_step: Option<f64>,
+    },
+    /// A method of [`integrate::structural`] with the step `dt` [s] in contact and
+    /// `dt_flight` [s] in free flight.
+    Structural {
+        method: StructuralMethod,
+        dt: f64,
+        dt_flight: f64,
+    },
+}
+
+/// Settings from which [`Integrator::from_name`] builds an integrator.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IntegratorSettings {
+    /// Relative tolerance of adaptive methods (default 1e-8).
+    pub rtol: f64,
+    /// Absolute tolerance of adaptive methods (default 1e-12).
+    pub atol: f64,
+    /// Fixed step [s] (default 1e-6).
+    pub dt: f64,
+    /// Free-flight step of the structural methods [s] (default `dt`).
+    pub dt_flight: Option<f64>,
+    /// Contact-guard step of the first-order methods [s].
+    pub guard_step: Option<f64>,
+    /// Largest step of adaptive methods [s].
+    pub max_step: Option<f64>,
+    /// Structural method parameters (`alpha`, `rho_inf`, `beta`, `gamma`).
+    pub parameters: Vec<(&'static str, f64)>,
+}
+
+impl Default for IntegratorSettings {
+    fn default() -> Self {
+        Self {
+            rtol: 1e-8,
+            atol: 1e-12,
+            dt: 1e-6,
+            dt_flight: None,
+            guard_step: None,
+            max_step: None,
+            parameters: Vec::new(),
+        }
+    }
+}
+
+/// Names accepted by [`Integrator::from_name`].
+pub const METHOD_NAMES: [&str; 12] = [
+    "euler",
+    "rk4",
+    "dopri5",
+    "backward_euler",
+    "radau5",
+    "bdf",
+    "adams",
+    "verlet",
+    "leapfrog",
+    "newmark",
+    "hht",
+    "generalized_alpha",
+];
+
+impl Integrator {
+    /// Build from a method name (one of [`METHOD_NAMES`]; the structural aliases of
+    /// [`StructuralMethod::by_name`] are accepted too) and its settings.
+    pub fn from_name(name: &str, s: &IntegratorSettings) -> Result<Self, BallDropError> {
+        if let Ok(method) = Method::from_name(name) {
+            if let Some((p, v)) = s.parameters.first() {
+                return Err(invalid(
+                    "[integrator] parameters",
+                    *v,
+                    &format!("`{p}` is a parameter of the structural methods, not of `{name}`"),
+                ));
+            }
+            if s.dt_flight.is_some() {
+                return Err(invalid(
+                    "[integrator] dt_flight",
+                    s.dt_flight.unwrap_or(f64::NAN),
+                    "only the structural methods (verlet, leapfrog, newmark, hht, generalized_alpha) take `dt_flight`",
+                ));
+            }
+            return Ok(Integrator::Ode {
+                method,
+                rtol: s.rtol,
+                atol: s.atol,
+                dt: s.dt,
+                guard_step: s.guard_step,
+                max_step: s.max_step,
+            });
+        }
+        let method = StructuralMethod::by_name(name, &s.parameters).map_err(|e| {
+            BallDropError::InvalidParameter {
+                key: "[integrator] method",
+                value: f64::NAN,
+                reason: format!("{e} (known methods: {})", METHOD_NAMES.join(", ")),
+            }
+        })?;
+        if s.guard_step.is_some() || s.max_step.is_some() {
+            return Err(invalid(
+                "[integrator] guard_step/max_step",
+                s.guard_step.or(s.max_step).unwrap_or(f64::NAN),
+                "only the first-order methods take `guard_step` and `max_step`; the structural methods use `dt` and `dt_flight`",
+            ));
+        }
+        Ok(Integrator::Structural {
+            method,
+            dt: s.dt,
+            dt_flight: s.dt_flight.unwrap_or(s.dt),
+        })
+    }
+
+    /// The method's name.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Integrator::Ode { method, .. } => method.name(),
+            Integrator::Structural { method, .. } => match method {
+                StructuralMethod::Newmark { beta, .. } if *beta == 0.0 => "central_difference",
+                m => m.name(),
+            },
+        }
+    }
+
+    /// `true` for the adaptive first-order methods (dopri5, radau5, bdf, adams).
+    pub fn is_adaptive(&self) -> bool {
+        matches!(
+            self,
+            Integrator::Ode {
+                method: Method::Dopri5 | Method::Radau5 | Method::Bdf | Method::Adams,
+                ..
+            }
+        )
+    }
+}
+
+/// A ball-drop scenario (SI units).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BallDrop {
+    /// Ball mass m [kg].
+    pub mass: f64,
+    /// Ball geometry at its lowest point.
+    pub shape: BallShape,
+    /// The ball's material (rigid or elastic).
+    pub ball: Body,
+    /// The half-space's material.
+    pub surface: Body,
+    /// Gravitational acceleration g [m/s²] (default 9.81).
+    pub gravity: f64,
+    /// Initial height h ≥ 0 of the lowest point above the surface [m].
+    pub height: f64,
+    /// Initial velocity v₀ [m/s], upward positive.
+    pub velocity: f64,
+    /// Simulated time [s].
+    pub duration: f64,
+    /// Elastic force law.
+    pub model: ForceModel,
+    /// Linear surface damping c ≥ 0 [N·s/m].
+    pub damping: f64,
+    /// Time integrator.
+    pub integrator: Integrator,
+    /// Spacing of the recorded free-flight samples [s] (every step in contact is recorded);
+    /// default `duration / 2000`.
+    pub output_interval: Option<f64>,
+}
+
+impl BallDrop {
+    /// The brief's steel ball: R = 10 mm, ρ = 7850 kg/m³, rigid, on steel (E = 210 GPa,
+    /// ν = 0.3), dropped from 0.1 m at rest, g = 9.81, 1 s, Hertz, Radau5 at rtol 1e-8.
+    pub fn steel_ball() -> Self {
+        let radius = 0.01;
+        Self {
+            mass: sphere_mass(radius, 7850.0),
+            shape: BallShape::Sphere { radius },
+            ball: Body::Rigid,
+            surface: Body::Elastic { e: 210e9, nu: 0.3 },
+            gravity: 9.81,
+            height: 0.1,
+            velocity: 0.0,
+            duration: 1.0,
+            model: ForceModel::Hertz,
+            damping: 0.0,
+            integrator: Integrator::Ode {
+                method: Method::Radau5,
+                rtol: 1e-8,
+                atol: 1e-12,
+                dt: 1e-6,
+                guard_step: None,
+                max_step: None,
+            },
+            output_interval: None,
+        }
+    }
+
+    /// Check every parameter; the error names the scenario key.
+    pub fn validate(&self) -> Result<Material, BallDropError> {
+        positive("[ball] mass", self.mass)?;
+        match self.shape {
+            BallShape::Sphere { radius } => positive("[ball] radius", radius)?,
+            BallShape::Ellipsoid { radius_x, radius_y } => {
+                positive("[ball] radius_x", radius_x)?;
+                positive("[ball] radius_y", radius_y)?;
+            }
+        }
+        if !(self.gravity.is_finite() && self.gravity >= 0.0) {
+            return Err(invalid("gravity", self.gravity, "must be finite and >= 0"));
+        }
+        if !(self.height.is_finite() && self.height >= 0.0) {
+            return Err(invalid(
+                "[initial] height",
+                self.height,
+                "must be finite and >= 0 (the ball starts on or above the surface)",
+            ));
+        }
+        if !self.velocity.is_finite() {
+            return Err(invalid(
+                "[initial] velocity",
+                self.velocity,
+                "must be finite",
+            ));
+        }
+        positive("duration", self.duration)?;
+        if !(self.damping.is_finite() && self.damping >= 0.0) {
+            return Err(invalid(
+                "[contact] damping",
+                self.damping,
+                "must be finite and >= 0",
+            ));
+        }
+        if let ForceModel::Bem { elements, tol } = self.model {
+            if !(4..=1024).contains(&elements) {
+                return Err(invalid(
+                    "[contact] elements",
+                    elements as f64,
+                    "must lie in 4..=1024",
+                ));
+            }
+            positive("[contact] tol", tol)?;
+        }
+        if let Some(dt) = self.output_interval {
+            positive("[output] interval", dt)?;
+        }
+        match self.integrator {
+            Integrator::Ode {
+                rtol,
+                atol,
+                dt,
+                guard_step,
+                max_step,
+                ..
+            } => {
+                positive("[integrator] rtol", rtol)?;
+                if !(atol.is_finite() && atol >= 0.0) {
+                    return Err(invalid(
+                        "[integrator] atol",
+                        atol,
+                        "must be finite and >= 0",
+                    ));
+                }
+                positive("[integrator] dt", dt)?;
+                if let Some(h) = guard_step {
+                    positive("[integrator] guard_step", h)?;
+                }
+                if let Some(h) = max_step {
+                    positive("[integrator] max_step", h)?;
+                }
+                if !self.integrator.is_adaptive() {
+                    max_step_count("[integrator] dt", self.duration, dt)?;
+                }
+            }
+            Integrator::Structural { dt, dt_flight, .. } => {
+                positive("[integrator] dt", dt)?;
+                positive("[integrator] dt_flight", dt_flight)?;
+                if dt_flight < dt {
+                    return Err(invalid(
+                        "[integrator] dt_flight",
+                        dt_flight,
+                        "must be >= dt",
+                    ));
+                }
+                max_step_count("[integrator] dt_flight", self.duration, dt_flight)?;
+                if self.damping > 0.0 {
+                    return Err(invalid(
+                        "[contact] damping",
+                        self.damping,
+                        "the structural methods take no velocity-dependent contact force; use a first-order method (e.g. radau5) with damping",
+                    ));
+                }
+            }
+        }
+        let check = |key, body: Body| -> Result<(), BallDropError> {
+            if let Body::Elastic { e, nu } = body {
+                Body::elastic(e, nu).map_err(|source| BallDropError::Material { key, source })?;
+            }
+            Ok(())
+        };
+        check("[ball]", self.ball)?;
+        check("[surface]", self.surface)?;
+        Material::combine(self.ball, self.surface).map_err(|source| BallDropError::Material {
+            key: "[ball]/[surface]",
+            source,
+        })
+    }
+
+    /// Speed at the first impact, `√(v₀² + 2 g h)` for a ball moving down or at rest
+    /// (a ball thrown upward returns with the same speed) [m/s].
+    pub fn impact_speed(&self) -> f64 {
+        (self.velocity * self.velocity + 2.0 * self.gravity * self.height).sqrt()
+    }
+
+    /// The energy scale `E_ref` of `energy_drift` (module documentation) [J].
+    pub fn energy_scale(&self) -> f64 {
+        let kinetic = 0.5 * self.mass * self.impact_speed().powi(2);
+        let r = match self.shape {
+            BallShape::Sphere { radius } => radius,
+            BallShape::Ellipsoid { radius_x, radius_y } => radius_x.min(radius_y),
+        };
+        if kinetic > 0.0 {
+            kinetic
+        } else if self.gravity > 0.0 {
+            self.mass * self.gravity * r
+        } else {
+            1.0
+        }
+    }
+
+    /// Run the simulation. With `record_series = false` only the events, the final state and
+    /// the statistics are kept (benchmarks).
+    pub fn simulate(&self, record_series: bool) -> Result<BallDropResult, BallDropError> {
+        let material = self.validate()?;
+        let k = hertz_constant(&self.shape, &material)?;
+        let reference = HertzImpact::new(self.mass, k, self.impact_speed(), self.gravity);
+        let model = match self.model {
+            ForceModel::Hertz => ContactForce::hertz(k, self.damping),
+            ForceModel::Bem { elements, tol } => {
+                // The largest patch: the Hertz approach at the first impact from the energy
+                // balance (the later impacts are no faster), or the static approach under m g.
+                let approach = reference
+                    .max_approach
+                    .max((self.mass * self.gravity / k).powf(2.0 / 3.0));
+                if approach.is_nan() || approach <= 0.0 {
+                    return Err(invalid(
+                        "[initial] velocity",
+                        self.velocity,
+                        "the BEM model needs an impact (a non-zero impact speed or gravity) to size its grid",
+                    ));
+                }
+                ContactForce::bem(&self.shape, material, approach, elements, tol, self.damping)?
+            }
+        };
+        let interval = self.output_interval.unwrap_or(self.duration / 2000.0);
+        let start = Instant::now();
+        let mut run = match self.integrator {
+            Integrator::Ode { .. } => {
+                first_order::run(self, model, &reference, interval, record_series)?
+            }
+            Integrator::Structural { .. } => {
+                second_order::run(self, model, interval, record_series)?
+            }
+        };
+        let wall_time_s = start.elapsed().as_secs_f64();
+        let scale = self.energy_scale();
+        let e0 = 0.5 * self.mass * self.velocity * self.velocity
+            + self.mass * self.gravity * self.height;
+        let energy_drift = (run.final_energy - e0) / scale;
+        let energy_drift_max = if record_series && !run.samples.is_empty() {
+            Some(
+                run.samples
+                    .iter()
+                    .map(|s| ((s.energy - e0) / scale).abs())
+                    .fold(0.0, f64::max),
+            )
+        } else {
+            None
+        };
+        for imp in &mut run.impacts {
+            imp.restitution = imp
+                .rebound_velocity
+                .map(|vr| vr / imp.impact_velocity)
+                .filter(|e| e.is_finite());
+        }
+        let complete: Vec<f64> = run.impacts.iter().filter_map(|i| i.restitution).collect();
+        let restitution = if complete.is_empty() {
+            None
+        } else {
+            Some(complete.iter().sum::<f64>() / complete.len() as f64)
+        };
+        Ok(BallDropResult {
+            samples: run.samples,
+            impacts: run.impacts,
+            restitution,
+            initial_energy: e0,
+            energy_scale: scale,
+            energy_drift,
+            energy_drift_max,
+            stats: run.stats,
+            wall_time_s,
+            reference,
+            hertz_constant: k,
+            final_time: run.final_time,
+        })
+    }
+}
+
+/// Mass of a sphere of radius `r` [m] and density `rho` [kg/m³]: `(4/3)π r³ ρ`.
+pub fn sphere_mass(r: f64, rho: f64) -> f64 {
+    4.0 / 3.0 * std::f64::consts::PI * r.powi(3) * rho
+}
+
+fn positive(key: &'static str, v: f64) -> Result<(), BallDropError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(invalid(key, v, "must be finite and > 0"))
+    }
+}
+
+/// Refuse runs of more than 1e9 steps (a mistyped step size).
+fn max_step_count(key: &'static str, duration: f64, dt: f64) -> Result<(), BallDropError> {
+    if duration / dt > 1e9 {
+        return Err(invalid(
+            key,
+            dt,
+            &format!("{:.1e} steps over the duration; at most 1e9", duration / dt),
+        ));
+    }
+    Ok(())
+}
+
+/// Hertz impact closed form (dynamics.md §1.4, contact.md §4.10; Johnson 1985 §11.4).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HertzImpact {
+    /// Impact speed v [m/s].
+    pub impact_speed: f64,
+    /// Maximum approach δ* [m] from the energy balance
+    /// `(2/5) K δ*^{5/2} = ½ m v² + m g δ*` (g = 0: `δ* = (15 m v²/(16 E*√R))^{2/5}`).
+    pub max_approach: f64,
+    /// Peak force `F* = K δ*^{3/2}` [N].
+    pub peak_force: f64,
+    /// Contact duration without gravity, `t_c = (4/5) B(2/5, ½) δ₀*/v = 2.9432752 δ₀*/v`
+    /// with the gravity-free δ₀* [s]. (From `t_c = 2 ∫₀^{δ*} dδ / √(v² − (4K/5m) δ^{5/2})`;
+    /// gravity lengthens it by a relative O(m g/F*).)
+    pub contact_duration: f64,
+}
+
+/// `(4/5) B(2/5, 1/2)`: the Hertz contact-time constant (dynamics.md §1.4 gives 2.9432).
+pub const CONTACT_TIME_FACTOR: f64 = 2.943_275_184_324_705;
+
+impl HertzImpact {
+    /// The impact of mass `m` [kg] at speed `v` [m/s] on `F = K δ^{3/2}` under gravity `g`.
+    pub fn new(m: f64, k: f64, v: f64, g: f64) -> Self {
+        let free = (1.25 * m * v * v / k).powf(0.4);
+        // f(δ) = (2/5)Kδ^{5/2} − m g δ − ½ m v² is convex for δ > 0 with f(0) ≤ 0: one
+        // positive root, bracketed and found by bisection to round-off.
+        let f = |d: f64| 0.4 * k * d * d * d.sqrt() - m * g * d - 0.5 * m * v * v;
+        let mut hi = free.max((2.5 * m * g / k).powf(2.0 / 3.0)).max(1e-300) * 2.0;
+        while f(hi) <= 0.0 && hi.is_finite() {
+            hi *= 2.0;
+        }
+        let mut lo = 0.0;
+        for _ in 0..2000 {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            if f(mid) > 0.0 {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        let delta = if v == 0.0 && g == 0.0 { 0.0 } else { hi };
+        Self {
+            impact_speed: v,
+            max_approach: delta,
+            peak_force: k * delta.powf(1.5),
+            contact_duration: if v > 0.0 {
+                CONTACT_TIME_FACTOR * free / v
+            } else {
+                f64::INFINITY
+            },
+        }
+    }
+}
+
+/// One recorded point of the time series.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sample {
+    /// Time [s].
+    pub t: f64,
+    /// Height of the lowest point [m].
+    pub z: f64,
+    /// Velocity [m/s].
+    pub v: f64,
+    /// Acceleration `F/m − g` [m/s²].
+    pub a: f64,
+    /// Approach δ = max(0, −z) [m].
+    pub approach: f64,
+    /// Contact force F [N].
+    pub force: f64,
+    /// Total energy `½ m v² + m g z + W(δ) + D` [J].
+    pub energy: f64,
+}
+
+/// One impact.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Impact {
+    /// Contact start [s].
+    pub time: f64,
+    /// Speed at contact start [m/s] (positive).
+    pub impact_velocity: f64,
+    /// Largest approach [m], located inside the step by the dense output.
+    pub max_approach: f64,
+    /// Largest contact force [N], located inside the step by the dense output.
+    pub peak_force: f64,
+    /// Contact end − start [s] (`None` if the run ended in contact).
+    pub contact_duration: Option<f64>,
+    /// Upward speed at contact end [m/s].
+    pub rebound_velocity: Option<f64>,
+    /// `rebound_velocity / impact_velocity`.
+    pub restitution: Option<f64>,
+}
+
+impl Impact {
+    fn start(time: f64, speed: f64) -> Self {
+        Self {
+            time,
+            impact_velocity: speed,
+            max_approach: 0.0,
+            peak_force: 0.0,
+            contact_duration: None,
+            rebound_velocity: None,
+            restitution: None,
+        }
+    }
+}
+
+/// Run statistics.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunStats {
+    /// The method's name.
+    pub method: &'static str,
+    /// Accepted steps.
+    pub steps: usize,
+    /// Rejected steps.
+    pub rejected_steps: usize,
+    /// Right-hand side / internal force evaluations.
+    pub f_evals: usize,
+    /// Jacobian / tangent evaluations.
+    pub jacobian_evals: usize,
+    /// LU factorisations.
+    pub lu_decompositions: usize,
+    /// Newton iterations.
+    pub newton_iterations: usize,
+    /// Steps undone by the contact guard (first-order) or replaced by a landing step
+    /// (structural).
+    pub guard_retries: usize,
+    /// Half-space solves (BEM model).
+    pub contact_solves: usize,
+}
+
+/// Result of [`BallDrop::simulate`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct BallDropResult {
+    /// Time series (every step in contact, free flight every `output_interval`).
+    pub samples: Vec<Sample>,
+    /// Impacts in time order.
+    pub impacts: Vec<Impact>,
+    /// Mean restitution over the completed impacts.
+    pub restitution: Option<f64>,
+    /// Initial energy E₀ [J] (potential energy measured from the surface).
+    pub initial_energy: f64,
+    /// `E_ref` [J].
+    pub energy_scale: f64,
+    /// `(E(t_end) − E₀)/E_ref`.
+    pub energy_drift: f64,
+    /// `max |E(t) − E₀|/E_ref` over the recorded samples.
+    pub energy_drift_max: Option<f64>,
+    /// Integrator counters.
+    pub stats: RunStats,
+    /// Wall time of the integration [s].
+    pub wall_time_s: f64,
+    /// Hertz closed form for the first impact.
+    pub reference: HertzImpact,
+    /// Hertz constant K of `F = K δ^{3/2}` [N/m^{3/2}].
+    pub hertz_constant: f64,
+    /// Time reached [s].
+    pub final_time: f64,
+}
+
+/// What a driver returns.
+struct RunOutput {
+    samples: Vec<Sample>,
+    impacts: Vec<Impact>,
+    final_energy: f64,
+    final_time: f64,
+    stats: RunStats,
+}
+
+/// Illinois root finder (Dowell & Jarratt 1971) on `[a, b]` with `f(a) f(b) ≤ 0`, to a
+/// bracket of `4ε max(1, |t|)`.
+fn find_root(
+    mut f: impl FnMut(f64) -> f64,
+    (mut a, mut fa): (f64, f64),
+    (mut b, mut fb): (f64, f64),
+) -> f64 {
+    let mut side = 0i8;
+    for _ in 0..200 {
+        if fb == 0.0 {
+            return b;
+        }
+        if fa == 0.0 {
+            return a;
+        }
+        if (b - a).abs() <= 4.0 * f64::EPSILON * b.abs().max(1.0) {
+            break;
+        }
+        let mut c = (a * fb - b * fa) / (fb - fa);
+        if !(c > a.min(b) && c < a.max(b)) {
+            c = 0.5 * (a + b);
+        }
+        let fc = f(c);
+        if (fc > 0.0) == (fb > 0.0) {
+            b = c;
+            fb = fc;
+            if side == -1 {
+                fa *= 0.5;
+            }
+            side = -1;
+        } else {
+            a = c;
+            fa = fc;
+            if side == 1 {
+                fb *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    if fa.abs() < fb.abs() { a } else { b }
+}
