@@ -12,6 +12,7 @@
 //! for the implicit structural schemes, solve the step equation with its own nonlinear solver.
 
 pub mod error;
+mod lu;
 pub mod ode;
 pub mod stats;
 pub mod structural;

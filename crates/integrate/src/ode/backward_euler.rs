@@ -2,12 +2,13 @@
 //! Newton's method with the Jacobian evaluated once per step at `(t_n, y_n)`
 //! (Hairer–Wanner II, §IV.3; L-stable, order 1).
 
-use super::linalg::{DenseLu, evaluate_jacobian};
+use super::linalg::evaluate_jacobian;
 use super::{
     OdeOptions, OdeStepper, OdeSystem, check_interpolation_range, check_state, hermite_interpolate,
     limit_step, rms_norm,
 };
 use crate::error::IntegrateError;
+use crate::lu::DenseLu;
 use crate::stats::Stats;
 use faer::Mat;
 

@@ -18,11 +18,12 @@
 //! h/4, local error O(h⁵)), which supply the k starting values without lowering the order.
 
 use super::explicit::rk4_step;
-use super::linalg::{DenseLu, evaluate_jacobian};
+use super::linalg::evaluate_jacobian;
 use super::{
     OdeOptions, OdeStepper, OdeSystem, check_interpolation_range, check_state, limit_step, rms_norm,
 };
 use crate::error::IntegrateError;
+use crate::lu::DenseLu;
 use crate::stats::Stats;
 use faer::Mat;
 

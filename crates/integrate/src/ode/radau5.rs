@@ -22,11 +22,12 @@
 // The transformation constants are quoted with RADAU5's 20 digits.
 #![allow(clippy::excessive_precision)]
 
-use super::linalg::{DenseLu, evaluate_jacobian};
+use super::linalg::evaluate_jacobian;
 use super::{
     OdeOptions, OdeStepper, OdeSystem, check_interpolation_range, check_state, limit_step,
 };
 use crate::error::IntegrateError;
+use crate::lu::DenseLu;
 use crate::stats::Stats;
 use faer::{Mat, c64};
 

@@ -4,8 +4,9 @@
 use faer::{Mat, MatMut};
 
 use super::StructuralSystem;
-use super::linalg::{DenseLu, check_matrix, mat_vec_add};
+use super::linalg::{check_matrix, mat_vec_add};
 use crate::IntegrateError;
+use crate::lu::DenseLu;
 use crate::ode::OdeSystem;
 
 /// `M q'' + C q' + f_int(q) = f_ext(t)` written as `y' = F(t, y)` with `y = [q, v]`:
@@ -20,7 +21,7 @@ use crate::ode::OdeSystem;
 /// differences are requested.
 pub struct FirstOrderForm<P> {
     problem: P,
-    mass_lu: DenseLu,
+    mass_lu: DenseLu<f64>,
     damping: Option<Mat<f64>>,
     force: Vec<f64>,
     load: Vec<f64>,

@@ -3,8 +3,9 @@
 
 use faer::{Mat, MatRef};
 
-use super::linalg::{DenseLu, check_matrix, check_vector, mat_vec_add, norm_inf};
+use super::linalg::{check_matrix, check_vector, mat_vec_add, norm_inf};
 use super::{StepEquation, StructuralMethod, StructuralSystem};
+use crate::lu::DenseLu;
 use crate::{IntegrateError, Stats};
 
 /// Stopping rule of the Newton iteration on the step equation.
@@ -85,10 +86,10 @@ struct Workspace {
     tangent_valid: bool,
     /// LU of `K_eff`, and the step size it was built for if it may be reused (linear
     /// problems only).
-    implicit_lu: DenseLu,
+    implicit_lu: DenseLu<f64>,
     implicit_lu_dt: Option<f64>,
     /// LU of `M + c C`, and the coefficient `c` it was built for (explicit methods).
-    explicit_lu: DenseLu,
+    explicit_lu: DenseLu<f64>,
     explicit_lu_c: Option<f64>,
 }
 
@@ -128,7 +129,7 @@ pub struct StructuralStepper {
     method: StructuralMethod,
     newton: NewtonOptions,
     mass: Mat<f64>,
-    mass_lu: DenseLu,
+    mass_lu: DenseLu<f64>,
     damping: Option<Mat<f64>>,
     t: f64,
     q: Vec<f64>,
