@@ -1,5 +1,8 @@
 //! `dyncontact modes` and `run` with `kind = "moving_load"`, end to end, against closed forms.
 
+// Reference roots are copied verbatim (20 digits) from dynamics.md §1.6.
+#![allow(clippy::excessive_precision)]
+
 use std::path::Path;
 use std::process::{Command, Output};
 
