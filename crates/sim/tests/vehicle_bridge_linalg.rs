@@ -1,0 +1,177 @@
+//! The coupled-step solves: Sherman–Morrison (one wheel) and Woodbury (several wheels, with and
+//! without rigid contacts) against a dense Gaussian elimination of the full matrix.
+
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use sim::vehicle_bridge::linalg::{
+    BlockDiagonal, CapacitanceWork, contact_update, dense_contact_update, dense_solve,
+};
+
+/// A random step matrix like the simulation's: 20 modal 1×1 blocks and `wheels` 2×2
+/// wheel–body blocks, diagonally dominant.
+fn random_system(rng: &mut ChaCha8Rng, wheels: usize) -> (BlockDiagonal, usize) {
+    let m = 20;
+    let n = m + 2 * wheels;
+    let mut a = BlockDiagonal::new(n);
+    for j in 0..m {
+        assert!(a.push1(j, 1e3 + 1e6 * rng.random::<f64>()));
+    }
+    for k in 0..wheels {
+        let (i, j) = (m + 2 * k, m + 2 * k + 1);
+        let c = 1e5 * rng.random::<f64>();
+        assert!(a.push2(i, j, 2e6 + c, -c, -c, 3e6 + c + 1e5 * rng.random::<f64>()));
+    }
+    (a, m)
+}
+
+fn random_vectors(rng: &mut ChaCha8Rng, n: usize, m: usize, wheel: usize) -> (Vec<f64>, Vec<f64>) {
+    let mut v = vec![0.0; n];
+    let mut g = vec![0.0; n];
+    for j in 0..m {
+        let w = rng.random::<f64>() * 2.0 - 1.0;
+        v[j] = -w;
+        g[j] = -w * (1.0 + 0.1 * (rng.random::<f64>() - 0.5));
+    }
+    v[wheel] = 1.0;
+    g[wheel] = 1.0;
+    (v, g)
+}
+
+/// Relative difference ‖a − b‖∞/‖b‖∞.
+fn rel(a: &[f64], b: &[f64]) -> f64 {
+    let d = a
+        .iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    d / b.iter().fold(0.0f64, |m, y| m.max(y.abs()))
+}
+
+/// For compliant contacts the update solves (A + s Σ k_c ĝ vᵀ) Δx = −R; Sherman–Morrison
+/// (k = 1) and Woodbury (k = 3) must equal the dense solve of that n × n matrix to 1e-12
+/// (condition numbers here are below 1e3, so round-off stays near 1e-14).
+#[test]
+fn sherman_morrison_and_woodbury_equal_dense() {
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    for wheels in [1usize, 3] {
+        let (a, m) = random_system(&mut rng, wheels);
+        let n = a.dimension();
+        let s = 0.9;
+        let mut gs = Vec::new();
+        let mut vs = Vec::new();
+        let mut kc = Vec::new();
+        for k in 0..wheels {
+            let (v, g) = random_vectors(&mut rng, n, m, m + 2 * k);
+            vs.push(v);
+            gs.push(g);
+            kc.push(1e6 + 1e7 * rng.random::<f64>());
+        }
+        let rhs: Vec<f64> = (0..n).map(|_| rng.random::<f64>() - 0.5).collect();
+        // Dense reference of the full matrix.
+        let mut full = a.to_dense();
+        for k in 0..wheels {
+            for i in 0..n {
+                for j in 0..n {
+                    full[i * n + j] += s * kc[k] * gs[k][i] * vs[k][j];
+                }
+            }
+        }
+        let mut reference = rhs.clone();
+        assert!(dense_solve(&mut full, &mut reference));
+        let g_refs: Vec<&[f64]> = gs.iter().map(|g| &g[..]).collect();
+        let v_refs: Vec<&[f64]> = vs.iter().map(|v| &v[..]).collect();
+        let compliance: Vec<f64> = kc.iter().map(|k| 1.0 / k).collect();
+        let zero = vec![0.0; wheels];
+        let mut x = rhs.clone();
+        let mut df = vec![0.0; wheels];
+        let mut work = CapacitanceWork::new(n, wheels);
+        assert!(contact_update(
+            &a,
+            s,
+            &g_refs,
+            &v_refs,
+            &compliance,
+            &zero,
+            &mut x,
+            &mut df,
+            &mut work
+        ));
+        let e = rel(&x, &reference);
+        println!("k = {wheels}: low-rank vs dense {e:.2e}");
+        assert!(e < 1e-12, "{e}");
+        // The force increments are the linearised law ΔF = k_c vᵀΔx.
+        for k in 0..wheels {
+            let dot: f64 = vs[k].iter().zip(&x).map(|(a, b)| a * b).sum();
+            assert!((df[k] - kc[k] * dot).abs() <= 1e-10 * df[k].abs().max(1e-300) + 1e-12);
+        }
+        // The bordered dense form gives the same answer.
+        let mut x2 = rhs.clone();
+        let mut df2 = vec![0.0; wheels];
+        let mut dense = Vec::new();
+        assert!(dense_contact_update(
+            &a,
+            s,
+            &g_refs,
+            &v_refs,
+            &compliance,
+            &zero,
+            &mut x2,
+            &mut df2,
+            &mut dense
+        ));
+        assert!(rel(&x2, &reference) < 1e-12);
+    }
+}
+
+/// Rigid contacts (zero compliance, δ̃ = δ): the update must satisfy the constraints
+/// vᵀΔx = −δ exactly (to round-off, 1e-12 relative) and equal the bordered dense solve.
+#[test]
+fn rigid_constraints_are_met() {
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    let wheels = 2;
+    let (a, m) = random_system(&mut rng, wheels);
+    let n = a.dimension();
+    let mut gs = Vec::new();
+    let mut vs = Vec::new();
+    for k in 0..wheels {
+        let (v, _) = random_vectors(&mut rng, n, m, m + 2 * k);
+        gs.push(v.clone());
+        vs.push(v);
+    }
+    let g_refs: Vec<&[f64]> = gs.iter().map(|g| &g[..]).collect();
+    let v_refs: Vec<&[f64]> = vs.iter().map(|v| &v[..]).collect();
+    let compliance = [0.0, 1e-7];
+    let delta = [2e-4, 0.0];
+    let rhs: Vec<f64> = (0..n).map(|_| rng.random::<f64>() - 0.5).collect();
+    let mut x = rhs.clone();
+    let mut df = vec![0.0; wheels];
+    let mut work = CapacitanceWork::new(n, wheels);
+    assert!(contact_update(
+        &a,
+        1.0,
+        &g_refs,
+        &v_refs,
+        &compliance,
+        &delta,
+        &mut x,
+        &mut df,
+        &mut work
+    ));
+    let vdx: f64 = vs[0].iter().zip(&x).map(|(a, b)| a * b).sum();
+    assert!((vdx + delta[0]).abs() < 1e-12 * delta[0]);
+    let mut x2 = rhs;
+    let mut df2 = vec![0.0; wheels];
+    let mut dense = Vec::new();
+    assert!(dense_contact_update(
+        &a,
+        1.0,
+        &g_refs,
+        &v_refs,
+        &compliance,
+        &delta,
+        &mut x2,
+        &mut df2,
+        &mut dense
+    ));
+    assert!(rel(&x, &x2) < 1e-12);
+    assert!(rel(&df, &df2) < 1e-12);
+}
