@@ -41,6 +41,19 @@ pub enum ContactError {
         "sensitivity solve did not converge in {iterations} iterations (relative residual {residual:e})"
     )]
     SensitivityNotConverged { iterations: usize, residual: f64 },
+    /// The tangential Gauss–Seidel iteration stopped at its sweep limit.
+    #[error(
+        "tangential solver did not converge in {iterations} sweeps (relative change {residual:e})"
+    )]
+    TangentialNotConverged { iterations: usize, residual: f64 },
+    /// Newton's method for prescribed tangential forces stopped at its iteration limit.
+    #[error(
+        "Newton iteration on the creepages/shift did not converge in {iterations} iterations (force error {residual:e} N)"
+    )]
+    NewtonNotConverged { iterations: usize, residual: f64 },
+    /// A prescribed tangential force cannot be carried by friction.
+    #[error("tangential force {force:e} N reaches the friction limit mu*Fn = {limit:e} N")]
+    ForceExceedsFriction { force: f64, limit: f64 },
     /// The FFT operator reported an internal inconsistency (should not happen).
     #[error("FFT failure: {0}")]
     Fft(String),

@@ -89,6 +89,173 @@ pub fn circulant_kernel(material: &Material, grid: &Grid) -> Vec<f64> {
     kernel
 }
 
+/// `X·atan(Y/X)` with the limit 0 at X = 0 (|atan| ≤ π/2).
+fn x_atan_y_over_x(x: f64, y: f64) -> f64 {
+    if x == 0.0 { 0.0 } else { x * (y / x).atan() }
+}
+
+/// `Y·ln r` with the limit 0 at Y = 0 (also when r → 0).
+fn y_log_r(x: f64, y: f64) -> f64 {
+    if y == 0.0 { 0.0 } else { y * x.hypot(y).ln() }
+}
+
+/// Corner double difference [[f]] of a primitive `f(X, Y)` for an observation point at offset
+/// (`ox`, `oy`) [m] from the centre of a `dx × dy` element (contact.md §3.2).
+fn bracket(f: impl Fn(f64, f64) -> f64, ox: f64, oy: f64, dx: f64, dy: f64) -> f64 {
+    let (x1, x2) = (ox + 0.5 * dx, ox - 0.5 * dx);
+    let (y1, y2) = (oy + 0.5 * dy, oy - 0.5 * dy);
+    f(x1, y1) - f(x2, y1) - f(x1, y2) + f(x2, y2)
+}
+
+/// The tangential and coupling influence coefficients at one offset [m/Pa]
+/// (contact.md §3.2, CONTACT's combined-material form, everything over π G):
+///
+/// ```text
+/// A_xx = 1/(πG) [[ Y ln(X+r) + (1−ν) X ln(Y+r) ]]
+/// A_yy = 1/(πG) [[ X ln(Y+r) + (1−ν) Y ln(X+r) ]]
+/// A_xy = A_yx = −ν/(πG) [[ r ]]
+/// A_xn = −K/(πG) [[ Y ln r + X atan(Y/X) ]]        (u_x from p_n; A_nx = −A_xn)
+/// A_yn = −K/(πG) [[ X ln r + Y atan(X/Y) ]]        (u_y from p_n; A_ny = −A_yn)
+/// ```
+///
+/// Their integrands (the mixed second derivatives of the primitives) are Cerruti's and
+/// Boussinesq's point-load solutions: A_xx ~ ΔA/(πG)·((1−ν)/r + ν X²/r³),
+/// A_xy ~ ΔA/(πG)·ν X Y/r³, A_xn ~ −ΔA K/(πG)·X/r².
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TangentialInfluence {
+    pub xx: f64,
+    pub xy: f64,
+    pub yy: f64,
+    pub xn: f64,
+    pub yn: f64,
+}
+
+/// Tangential and coupling influence coefficients of a `dx × dy` element loaded by a unit
+/// traction, observed at offset (`ox`, `oy`) from its centre. See [`TangentialInfluence`].
+pub fn tangential_influence(
+    material: &Material,
+    ox: f64,
+    oy: f64,
+    dx: f64,
+    dy: f64,
+) -> TangentialInfluence {
+    let nu = material.nu;
+    let scale = 1.0 / (std::f64::consts::PI * material.g);
+    let xx = bracket(
+        |x, y| x_log_y_plus_r(y, x) + (1.0 - nu) * x_log_y_plus_r(x, y),
+        ox,
+        oy,
+        dx,
+        dy,
+    );
+    let yy = bracket(
+        |x, y| x_log_y_plus_r(x, y) + (1.0 - nu) * x_log_y_plus_r(y, x),
+        ox,
+        oy,
+        dx,
+        dy,
+    );
+    let rr = bracket(|x, y| x.hypot(y), ox, oy, dx, dy);
+    let (xn, yn) = if material.k == 0.0 {
+        (0.0, 0.0)
+    } else {
+        (
+            bracket(|x, y| y_log_r(x, y) + x_atan_y_over_x(x, y), ox, oy, dx, dy),
+            bracket(|x, y| y_log_r(y, x) + x_atan_y_over_x(y, x), ox, oy, dx, dy),
+        )
+    };
+    TangentialInfluence {
+        xx: scale * xx,
+        xy: -nu * scale * rr,
+        yy: scale * yy,
+        xn: -material.k * scale * xn,
+        yn: -material.k * scale * yn,
+    }
+}
+
+/// Which coefficient of [`TangentialInfluence`] a kernel table holds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Component {
+    Xx,
+    Xy,
+    Yy,
+    Xn,
+    Yn,
+}
+
+impl TangentialInfluence {
+    /// The coefficient of one component.
+    pub fn get(&self, c: Component) -> f64 {
+        match c {
+            Component::Xx => self.xx,
+            Component::Xy => self.xy,
+            Component::Yy => self.yy,
+            Component::Xn => self.xn,
+            Component::Yn => self.yn,
+        }
+    }
+}
+
+/// Tangential kernels at all element offsets of `grid`, in the "centred" layout: a
+/// `(2nx − 1) × (2ny − 1)` array (x fastest) whose entry (i, j) is the coefficient at offset
+/// ((i − nx + 1)·dx + `shift`, (j − ny + 1)·dy). `shift` [m] moves the observation points
+/// along x: with `shift = δq` it gives CONTACT's kernel "C_v" of the displacement that the
+/// particles now at x had one rolling step δq earlier (contact.md §3.5).
+/// Returns the tables of `components` in order.
+pub fn tangential_offset_tables(
+    material: &Material,
+    grid: &Grid,
+    shift: f64,
+    components: &[Component],
+) -> Vec<Vec<f64>> {
+    let (wx, wy) = (2 * grid.nx - 1, 2 * grid.ny - 1);
+    let mut tables = vec![vec![0.0; wx * wy]; components.len()];
+    for j in 0..wy {
+        let oy = (j as f64 - (grid.ny as f64 - 1.0)) * grid.dy;
+        for i in 0..wx {
+            let ox = (i as f64 - (grid.nx as f64 - 1.0)) * grid.dx + shift;
+            let t = tangential_influence(material, ox, oy, grid.dx, grid.dy);
+            for (table, &c) in tables.iter_mut().zip(components) {
+                table[j * wx + i] = t.get(c);
+            }
+        }
+    }
+    tables
+}
+
+/// Re-order a centred offset table (see [`tangential_offset_tables`]) into the circulant
+/// `2nx × 2ny` layout of [`crate::convolution::FftConvolution::kernel_spectrum`]; the unused
+/// offsets −nx and −ny are set to zero (they never reach an output element).
+pub fn circulant_from_centred(grid: &Grid, centred: &[f64]) -> Vec<f64> {
+    let (nx, ny) = (grid.nx, grid.ny);
+    let (wx, mx, my) = (2 * nx - 1, 2 * nx, 2 * ny);
+    let mut out = vec![0.0; mx * my];
+    for j in 0..my {
+        let oj = if j < ny {
+            j as isize
+        } else {
+            j as isize - my as isize
+        };
+        if oj <= -(ny as isize) {
+            continue;
+        }
+        let cj = (oj + ny as isize - 1) as usize;
+        for i in 0..mx {
+            let oi = if i < nx {
+                i as isize
+            } else {
+                i as isize - mx as isize
+            };
+            if oi <= -(nx as isize) {
+                continue;
+            }
+            let ci = (oi + nx as isize - 1) as usize;
+            out[j * mx + i] = centred[cj * wx + ci];
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -28,18 +28,27 @@
 
 pub mod convolution;
 pub mod error;
+pub mod fastsim;
 pub mod gap;
 pub mod grid;
 pub mod hertz;
 pub mod influence;
+pub mod linear_theory;
 pub mod material;
 pub mod normcg;
 pub mod solution;
+pub mod tangential;
 
 pub use error::ContactError;
+pub use fastsim::{FastsimInput, FastsimSolution, fastsim};
 pub use gap::{AUTO_GRID_ELEMENTS, AUTO_GRID_MARGIN, GapShape, auto_grid};
 pub use grid::Grid;
 pub use hertz::{Hertz, LineHertz, curvatures_from_radii};
+pub use linear_theory::{CreepCoefficients, creep_coefficients, linear_forces};
 pub use material::{Body, Material};
 pub use normcg::{NormalLoad, NormalSolver, SolverOptions};
 pub use solution::NormalSolution;
+pub use tangential::{
+    Creepages, ElementState, RollingLoad, ShiftLoad, StepMotion, TangentialOptions,
+    TangentialSolution, TangentialSolver,
+};
