@@ -119,7 +119,7 @@ pub struct StepMotion {
 pub struct TangentialOptions {
     /// Relative tolerance on ‖Δp‖_rms/‖p‖_rms per Gauss–Seidel sweep (default 1e-7).
     pub tol: f64,
-    /// Sweep limit per solve (default 2000).
+    /// Sweep limit per solve (default 10000; 2D rolling with large adhesion areas needs thousands).
     pub max_iter: usize,
     /// Relaxation ω ∈ (0, 2) of adhesion updates (default 1). Steady rolling relaxes every
     /// element with min(ω, 0.5), reduced automatically when sweeps oscillate.
@@ -136,7 +136,7 @@ impl Default for TangentialOptions {
     fn default() -> Self {
         TangentialOptions {
             tol: 1e-7,
-            max_iter: 2000,
+            max_iter: 10000,
             omega: 1.0,
             force_tol: 1e-6,
             max_newton: 40,
