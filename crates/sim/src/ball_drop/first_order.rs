@@ -222,14 +222,34 @@ pub(super) fn run(
         }
     }
 
-    // Time series: every step in (or next to) contact, free flight thinned to `interval`.
+    // Time series: every step in (or next to) contact, free flight every `interval`. The
+    // driver keeps no dense output after the run, so free-flight points between two accepted
+    // steps that are both above the surface come from the exact flight solution from the
+    // earlier step, z = zᵢ + vᵢτ − gτ²/2, v = vᵢ − gτ (F = 0 there; the guard never lets a
+    // whole contact fall inside one step).
     let mut samples = Vec::new();
     let n = sol.t.len();
     let mut last_kept = f64::NEG_INFINITY;
+    let mut y_fill = [0.0; 3];
     for i in 0..n {
         let near_contact = sol.y[i][0] < 0.0
             || (i > 0 && sol.y[i - 1][0] < 0.0)
             || (i + 1 < n && sol.y[i + 1][0] < 0.0);
+        if i > 0 && !near_contact {
+            let (ti, yi) = (sol.t[i - 1], &sol.y[i - 1]);
+            while last_kept + interval < sol.t[i] {
+                let tau = last_kept + interval - ti;
+                if tau <= 0.0 {
+                    last_kept = ti;
+                    continue;
+                }
+                y_fill[0] = yi[0] + yi[1] * tau - 0.5 * g * tau * tau;
+                y_fill[1] = yi[1] - g * tau;
+                y_fill[2] = yi[2];
+                last_kept = ti + tau;
+                samples.push(sample(&mut model, m, g, last_kept, &y_fill)?);
+            }
+        }
         if !(near_contact || i == 0 || i + 1 == n || sol.t[i] - last_kept >= interval) {
             continue;
         }

@@ -133,18 +133,12 @@ pub(super) fn run(
             impacts.push(Impact::start(stepper.t(), -stepper.v()[0]));
             continue;
         }
-        // Contact start inside the step.
+        // Contact start inside the step: on the free-flight parabola from the step's start
+        // (the force is zero until z = 0 and the schemes integrate the flight exactly; the
+        // Hermite dense output would carry the contact kick of the step's end velocity).
         if !in_contact && z0 > 0.0 && z1 <= 0.0 {
-            let ts = find_root(
-                |t| {
-                    let _ = stepper.dense_output(t, &mut out);
-                    out[0]
-                },
-                (t0, z0),
-                (t1, z1),
-            );
-            stepper.dense_velocity(ts, &mut out)?;
-            impacts.push(Impact::start(ts, -out[0]));
+            let tau = 2.0 * z0 / ((v0 * v0 + 2.0 * g * z0).sqrt() - v0);
+            impacts.push(Impact::start(t0 + tau, -(v0 - g * tau)));
             in_contact = true;
         }
         // Maximum approach: z' rises through 0 while in contact.

@@ -1,0 +1,609 @@
+//! `dyncontact run FILE` with `kind = "ball_drop"`: a ball dropped on an elastic half-space
+//! (Hertz or boundary-element contact, any integrator), and `dyncontact bench integrators`.
+//! The schema is documented in docs/ball_drop.md. SI units; unknown keys are errors.
+
+use std::path::Path;
+use std::time::Instant;
+
+use anyhow::{Result, anyhow, bail};
+use halfspace::Body;
+use serde::Deserialize;
+use serde_json::{Value, json};
+use sim::ball_drop::{
+    BallDrop, BallDropResult, BallShape, ForceModel, HertzImpact, Integrator, IntegratorSettings,
+    METHOD_NAMES, sphere_mass,
+};
+
+use crate::plot::{Panel, Series};
+use crate::{output, plot};
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Scenario {
+    kind: String,
+    /// Simulated time [s] (default 1.0).
+    duration: Option<f64>,
+    /// Gravitational acceleration [m/s²] (default 9.81).
+    gravity: Option<f64>,
+    ball: BallSpec,
+    surface: SurfaceSpec,
+    initial: InitialSpec,
+    contact: Option<ContactSpec>,
+    integrator: Option<IntegratorSpec>,
+    output: Option<OutputSpec>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct BallSpec {
+    radius: Option<f64>,
+    radius_x: Option<f64>,
+    radius_y: Option<f64>,
+    density: Option<f64>,
+    mass: Option<f64>,
+    rigid: Option<bool>,
+    #[serde(rename = "E")]
+    e: Option<f64>,
+    nu: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SurfaceSpec {
+    rigid: Option<bool>,
+    #[serde(rename = "E")]
+    e: Option<f64>,
+    nu: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct InitialSpec {
+    height: f64,
+    velocity: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ContactSpec {
+    model: Option<String>,
+    damping: Option<f64>,
+    elements: Option<usize>,
+    tol: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct IntegratorSpec {
+    method: Option<String>,
+    rtol: Option<f64>,
+    atol: Option<f64>,
+    dt: Option<f64>,
+    dt_flight: Option<f64>,
+    guard_step: Option<f64>,
+    max_step: Option<f64>,
+    alpha: Option<f64>,
+    rho_inf: Option<f64>,
+    beta: Option<f64>,
+    gamma: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct OutputSpec {
+    interval: Option<f64>,
+    plot: Option<bool>,
+}
+
+/// A parsed scenario.
+pub struct Prepared {
+    pub scenario: BallDrop,
+    pub plot: bool,
+    settings: (Option<f64>, Option<f64>, Option<f64>),
+}
+
+fn body(section: &str, rigid: Option<bool>, e: Option<f64>, nu: Option<f64>) -> Result<Body> {
+    match (rigid.unwrap_or(false), e, nu) {
+        (true, None, None) => Ok(Body::Rigid),
+        (true, _, _) => bail!("[{section}]: a rigid body takes no `E` or `nu`"),
+        (false, Some(e), Some(nu)) => {
+            Body::elastic(e, nu).map_err(|err| anyhow!("[{section}] {err}"))
+        }
+        (false, None, _) => bail!("[{section}]: missing `E` [Pa] (or set `rigid = true`)"),
+        (false, Some(_), None) => bail!("[{section}]: missing `nu`"),
+    }
+}
+
+/// Parse a scenario file; `integrator` overrides `[integrator] method`.
+pub fn parse(text: &str, integrator: Option<&str>) -> Result<Prepared> {
+    let s: Scenario = toml::from_str(text).map_err(|e| anyhow!("invalid scenario file: {e}"))?;
+    if s.kind != "ball_drop" {
+        bail!("`kind` = \"{}\" is not a ball-drop scenario", s.kind);
+    }
+    let b = &s.ball;
+    let shape = match (b.radius, b.radius_x, b.radius_y) {
+        (Some(radius), None, None) => BallShape::Sphere { radius },
+        (None, Some(radius_x), Some(radius_y)) => BallShape::Ellipsoid { radius_x, radius_y },
+        (None, None, None) => bail!("[ball]: missing `radius` (or `radius_x` and `radius_y`)"),
+        (Some(_), _, _) => {
+            bail!("[ball]: give either `radius` or `radius_x` and `radius_y`, not both")
+        }
+        (None, _, _) => bail!("[ball]: an ellipsoid needs both `radius_x` and `radius_y`"),
+    };
+    let mass = match (b.mass, b.density, shape) {
+        (Some(m), None, _) => m,
+        (None, Some(rho), BallShape::Sphere { radius }) => {
+            if !(rho.is_finite() && rho > 0.0) {
+                bail!("[ball] `density` = {rho}: must be finite and > 0 [kg/m³]");
+            }
+            sphere_mass(radius, rho)
+        }
+        (None, Some(_), BallShape::Ellipsoid { .. }) => {
+            bail!("[ball]: `density` needs a sphere (`radius`); give the `mass` of an ellipsoid")
+        }
+        (Some(_), Some(_), _) => bail!("[ball]: give either `mass` or `density`, not both"),
+        (None, None, _) => bail!("[ball]: missing `mass` [kg] or `density` [kg/m³]"),
+    };
+    let ball = body("ball", b.rigid, b.e, b.nu)?;
+    let surface = body("surface", s.surface.rigid, s.surface.e, s.surface.nu)?;
+    let c = s.contact.as_ref();
+    let model_name = c.and_then(|c| c.model.as_deref()).unwrap_or("hertz");
+    let model = match model_name {
+        "hertz" => {
+            if c.is_some_and(|c| c.elements.is_some() || c.tol.is_some()) {
+                bail!("[contact]: `elements` and `tol` belong to model = \"bem\"");
+            }
+            ForceModel::Hertz
+        }
+        "bem" => ForceModel::Bem {
+            elements: c.and_then(|c| c.elements).unwrap_or(32),
+            tol: c.and_then(|c| c.tol).unwrap_or(1e-10),
+        },
+        other => bail!("[contact] `model` = \"{other}\": expected \"hertz\" or \"bem\""),
+    };
+    let i = s.integrator.as_ref();
+    let method = integrator
+        .or_else(|| i.and_then(|i| i.method.as_deref()))
+        .unwrap_or("radau5");
+    let defaults = IntegratorSettings::default();
+    let mut parameters = Vec::new();
+    if let Some(i) = i {
+        for (name, value) in [
+            ("alpha", i.alpha),
+            ("rho_inf", i.rho_inf),
+            ("beta", i.beta),
+            ("gamma", i.gamma),
+        ] {
+            if let Some(v) = value {
+                parameters.push((name, v));
+            }
+        }
+    }
+    let settings = IntegratorSettings {
+        rtol: i.and_then(|i| i.rtol).unwrap_or(defaults.rtol),
+        atol: i.and_then(|i| i.atol).unwrap_or(defaults.atol),
+        dt: i.and_then(|i| i.dt).unwrap_or(defaults.dt),
+        dt_flight: i.and_then(|i| i.dt_flight),
+        guard_step: i.and_then(|i| i.guard_step),
+        max_step: i.and_then(|i| i.max_step),
+        parameters,
+    };
+    let integrator = Integrator::from_name(method, &settings).map_err(|e| {
+        anyhow!("{e}").context(format!(
+            "[integrator] method = \"{method}\" (known: {})",
+            METHOD_NAMES.join(", ")
+        ))
+    })?;
+    let scenario = BallDrop {
+        mass,
+        shape,
+        ball,
+        surface,
+        gravity: s.gravity.unwrap_or(9.81),
+        height: s.initial.height,
+        velocity: s.initial.velocity.unwrap_or(0.0),
+        duration: s.duration.unwrap_or(1.0),
+        model,
+        damping: c.and_then(|c| c.damping).unwrap_or(0.0),
+        integrator,
+        output_interval: s.output.as_ref().and_then(|o| o.interval),
+    };
+    scenario.validate().map_err(|e| anyhow!("{e}"))?;
+    Ok(Prepared {
+        scenario,
+        plot: s.output.as_ref().and_then(|o| o.plot).unwrap_or(true),
+        settings: (Some(settings.rtol), Some(settings.atol), Some(settings.dt)),
+    })
+}
+
+/// The JSON summary.
+pub fn summary(p: &Prepared, r: &BallDropResult) -> Value {
+    let sc = &p.scenario;
+    let st = &r.stats;
+    let (rtol, atol, dt) = p.settings;
+    let integrator = match sc.integrator {
+        Integrator::Ode { .. } if sc.integrator.is_adaptive() => {
+            json!({"method": st.method, "rtol": rtol, "atol": atol})
+        }
+        Integrator::Ode { .. } => json!({"method": st.method, "dt": dt}),
+        Integrator::Structural { dt, dt_flight, .. } => {
+            json!({"method": st.method, "dt": dt, "dt_flight": dt_flight})
+        }
+    };
+    let mut integrator = integrator;
+    let obj = integrator.as_object_mut().expect("an object");
+    for (k, v) in [
+        ("steps", st.steps),
+        ("rejected_steps", st.rejected_steps),
+        ("f_evals", st.f_evals),
+        ("jacobian_evals", st.jacobian_evals),
+        ("lu_decompositions", st.lu_decompositions),
+        ("newton_iterations", st.newton_iterations),
+        ("guard_retries", st.guard_retries),
+        ("contact_solves", st.contact_solves),
+    ] {
+        obj.insert(k.to_string(), json!(v));
+    }
+    let impacts: Vec<Value> = r
+        .impacts
+        .iter()
+        .map(|i| {
+            json!({
+                "time": i.time,
+                "impact_velocity": i.impact_velocity,
+                "max_approach": i.max_approach,
+                "peak_force": i.peak_force,
+                "contact_duration": i.contact_duration,
+                "rebound_velocity": i.rebound_velocity,
+                "restitution": i.restitution,
+            })
+        })
+        .collect();
+    let model = match sc.model {
+        ForceModel::Hertz => json!({"model": "hertz", "damping": sc.damping}),
+        ForceModel::Bem { elements, tol } => {
+            json!({"model": "bem", "elements": elements, "tol": tol, "damping": sc.damping})
+        }
+    };
+    json!({
+        "kind": "ball_drop",
+        "mass": sc.mass,
+        "hertz_constant": r.hertz_constant,
+        "contact": model,
+        "closed_form": {
+            "impact_speed": r.reference.impact_speed,
+            "max_approach": r.reference.max_approach,
+            "peak_force": r.reference.peak_force,
+            "contact_duration": r.reference.contact_duration,
+        },
+        "impacts": impacts,
+        "restitution": r.restitution,
+        "initial_energy": r.initial_energy,
+        "energy_drift": r.energy_drift,
+        "energy_drift_max": r.energy_drift_max,
+        "integrator": integrator,
+        "final_time": r.final_time,
+        "samples": r.samples.len(),
+        "wall_time_s": r.wall_time_s,
+    })
+}
+
+/// `dyncontact run FILE` for `kind = "ball_drop"`.
+pub fn run(text: &str, out: &Path, json: bool, integrator: Option<&str>) -> Result<()> {
+    let prepared = parse(text, integrator)?;
+    let result = prepared
+        .scenario
+        .simulate(true)
+        .map_err(|e| anyhow!("ball drop: {e}"))?;
+    let summary = summary(&prepared, &result);
+    output::ensure_dir(out)?;
+    output::write_csv(
+        &out.join("timeseries.csv"),
+        &["t", "z", "v", "a", "approach", "force", "energy"],
+        result
+            .samples
+            .iter()
+            .map(|s| vec![s.t, s.z, s.v, s.a, s.approach, s.force, s.energy]),
+    )?;
+    output::write_json(&out.join("summary.json"), &summary)?;
+    if prepared.plot {
+        write_plot(&out.join("ball_drop.png"), &result)?;
+    }
+    if json {
+        println!("{}", serde_json::to_string_pretty(&summary)?);
+    } else {
+        print_summary(&prepared, &result);
+        println!(
+            "wrote {}/timeseries.csv, summary.json{}",
+            out.display(),
+            if prepared.plot { ", ball_drop.png" } else { "" }
+        );
+    }
+    Ok(())
+}
+
+fn print_summary(p: &Prepared, r: &BallDropResult) {
+    let st = &r.stats;
+    println!(
+        "ball drop: m = {:.6e} kg, K = {:.6e} N/m^1.5, {} impacts in {} s; {}: {} steps ({} rejected), {} f-evals, {:.3} ms",
+        p.scenario.mass,
+        r.hertz_constant,
+        r.impacts.len(),
+        r.final_time,
+        st.method,
+        st.steps,
+        st.rejected_steps,
+        st.f_evals,
+        1e3 * r.wall_time_s
+    );
+    let c = r.reference;
+    println!(
+        "closed form (first impact, v = {:.6} m/s): δ* = {:.6e} m, F* = {:.6e} N, t_c = {:.6e} s",
+        c.impact_speed, c.max_approach, c.peak_force, c.contact_duration
+    );
+    println!(
+        "{:>4} {:>12} {:>12} {:>13} {:>13} {:>13} {:>12} {:>10}",
+        "#", "time s", "v_in m/s", "max δ m", "peak F N", "duration s", "v_out m/s", "e"
+    );
+    let opt = |v: Option<f64>| v.map_or("-".to_string(), |x| format!("{x:.6e}"));
+    for (k, i) in r.impacts.iter().enumerate() {
+        println!(
+            "{:>4} {:>12.8} {:>12.8} {:>13.6e} {:>13.6e} {:>13} {:>12} {:>10}",
+            k + 1,
+            i.time,
+            i.impact_velocity,
+            i.max_approach,
+            i.peak_force,
+            opt(i.contact_duration),
+            i.rebound_velocity
+                .map_or("-".to_string(), |v| format!("{v:.8}")),
+            i.restitution.map_or("-".to_string(), |e| format!("{e:.7}")),
+        );
+    }
+    println!(
+        "restitution {}, energy drift {:.3e} (max {})",
+        r.restitution.map_or("-".to_string(), |e| format!("{e:.8}")),
+        r.energy_drift,
+        r.energy_drift_max
+            .map_or("-".to_string(), |e| format!("{e:.3e}"))
+    );
+}
+
+/// z(t) and F(t) over the run, and F(t) over the first impact (time from its start, µs).
+fn write_plot(path: &Path, r: &BallDropResult) -> Result<()> {
+    let z: Vec<(f64, f64)> = r.samples.iter().map(|s| (s.t, s.z)).collect();
+    let f: Vec<(f64, f64)> = r.samples.iter().map(|s| (s.t, s.force)).collect();
+    let mut panels = vec![
+        Panel {
+            title: "height of the lowest point".into(),
+            x_label: "t [s]".into(),
+            y_label: "z [m]".into(),
+            series: vec![Series::new("z", z)],
+        },
+        Panel {
+            title: "contact force".into(),
+            x_label: "t [s]".into(),
+            y_label: "F [N]".into(),
+            series: vec![
+                Series::new("F", f),
+                Series::new(
+                    "peak of each impact (widened to be visible)",
+                    peak_markers(r),
+                ),
+            ],
+        },
+    ];
+    if let Some(first) = r.impacts.first() {
+        let tc = first
+            .contact_duration
+            .unwrap_or(r.reference.contact_duration);
+        let (a, b) = (first.time - 0.1 * tc, first.time + 1.1 * tc);
+        let zoom: Vec<(f64, f64)> = r
+            .samples
+            .iter()
+            .filter(|s| s.t >= a && s.t <= b)
+            .map(|s| (1e6 * (s.t - first.time), s.force))
+            .collect();
+        let hertz = closed_form_marker(r);
+        panels.push(Panel {
+            title: format!("first impact (t₀ = {:.6} s)", first.time),
+            x_label: "t − t₀ [µs]".into(),
+            y_label: "F [N]".into(),
+            series: vec![
+                Series::new("simulated", zoom),
+                Series::new("closed-form F* over the closed-form t_c", hertz),
+            ],
+        });
+    }
+    plot::panels(path, &panels)
+}
+
+/// A contact lasts ~1e-4 of the run, narrower than a pixel: a triangle per impact, 0.8 % of
+/// the run wide, with the impact's peak force as its height.
+fn peak_markers(r: &BallDropResult) -> Vec<(f64, f64)> {
+    let w = 0.004 * r.final_time;
+    let mut points = Vec::new();
+    for i in &r.impacts {
+        let mid = i.time + 0.5 * i.contact_duration.unwrap_or(0.0);
+        points.extend([(mid - w, 0.0), (mid, i.peak_force), (mid + w, 0.0)]);
+    }
+    points
+}
+
+/// Marker of the closed form on the zoom: the Hertz peak force F* drawn over [0, t_c].
+fn closed_form_marker(r: &BallDropResult) -> Vec<(f64, f64)> {
+    let c = r.reference;
+    vec![
+        (0.0, c.peak_force),
+        (1e6 * c.contact_duration, c.peak_force),
+    ]
+}
+
+/// One benchmark row.
+struct Row {
+    method: &'static str,
+    setting: String,
+    impacts: usize,
+    error: f64,
+    steps: usize,
+    f_evals: usize,
+    wall: f64,
+}
+
+fn bench_case(method: &str, settings: &IntegratorSettings) -> Result<BallDrop> {
+    Ok(BallDrop {
+        integrator: Integrator::from_name(method, settings).map_err(|e| anyhow!("{e}"))?,
+        ..BallDrop::steel_ball()
+    })
+}
+
+/// Error of the first peak force against the energy-balance closed form, and the result.
+fn bench_run(scenario: &BallDrop, reference: &HertzImpact) -> Result<(f64, BallDropResult)> {
+    let r = scenario.simulate(false).map_err(|e| anyhow!("{e}"))?;
+    let err = r.impacts.first().map_or(f64::INFINITY, |i| {
+        (i.peak_force / reference.peak_force - 1.0).abs()
+    });
+    Ok((err, r))
+}
+
+/// `dyncontact bench integrators`: the brief's drop (steel ball, 0.1 m, 1 s, 4 bounces) with
+/// every method, at the loosest tolerance (adaptive) or largest step (fixed) that gives a
+/// relative error ≤ `target` in the first impact's peak force against the closed form
+/// `(2/5)Kδ*^{5/2} = ½mv² + mgδ*`, `F* = Kδ*^{3/2}`.
+pub fn bench_integrators(target: f64) -> Result<()> {
+    let base = BallDrop::steel_ball();
+    let material = base.validate().map_err(|e| anyhow!("{e}"))?;
+    let k = sim::ball_drop::hertz_constant(&base.shape, &material).map_err(|e| anyhow!("{e}"))?;
+    let reference = HertzImpact::new(base.mass, k, base.impact_speed(), base.gravity);
+    println!(
+        "ball drop: steel ball R = 10 mm on steel, h = 0.1 m, 1 s (4 impacts), Hertz; target: first peak force within {target:.0e} of F* = {:.6} N",
+        reference.peak_force
+    );
+    let mut rows = Vec::new();
+    for method in METHOD_NAMES {
+        let mut found: Option<(String, IntegratorSettings)> = None;
+        let mut best = (f64::INFINITY, String::new());
+        let adaptive = matches!(method, "dopri5" | "radau5" | "bdf" | "adams");
+        let structural = matches!(
+            method,
+            "verlet" | "leapfrog" | "newmark" | "hht" | "generalized_alpha"
+        );
+        if adaptive {
+            for e in 4..=13 {
+                let rtol = 10f64.powi(-e);
+                let s = IntegratorSettings {
+                    rtol,
+                    atol: rtol * 1e-4,
+                    ..IntegratorSettings::default()
+                };
+                let (err, r) = bench_run(&bench_case(method, &s)?, &reference)?;
+                let label = format!("rtol {rtol:.0e}");
+                if err < best.0 {
+                    best = (err, label.clone());
+                }
+                if err <= target && r.impacts.len() == 4 {
+                    found = Some((label, s));
+                    break;
+                }
+            }
+        } else {
+            // Fixed steps: halve from 1 µs; first-order methods stop at a 2e7-step budget.
+            let mut dt = 1e-6;
+            loop {
+                let steps = if structural {
+                    4.0 * 50e-6 / dt
+                } else {
+                    1.0 / dt
+                };
+                if steps > 2e7 {
+                    break;
+                }
+                let s = IntegratorSettings {
+                    dt,
+                    dt_flight: structural.then_some(1e-3),
+                    ..IntegratorSettings::default()
+                };
+                let (err, r) = bench_run(&bench_case(method, &s)?, &reference)?;
+                let label = if structural {
+                    format!("dt {dt:.2e}, flight 1e-3")
+                } else {
+                    format!("dt {dt:.2e}")
+                };
+                if err < best.0 {
+                    best = (err, label.clone());
+                }
+                if err <= target && r.impacts.len() == 4 {
+                    found = Some((label, s));
+                    break;
+                }
+                dt *= 0.5;
+            }
+        }
+        match found {
+            Some((label, s)) => {
+                let scenario = bench_case(method, &s)?;
+                let mut wall = f64::INFINITY;
+                let mut last = None;
+                for _ in 0..5 {
+                    let t = Instant::now();
+                    let out = bench_run(&scenario, &reference)?;
+                    wall = wall.min(t.elapsed().as_secs_f64());
+                    last = Some(out);
+                }
+                let (err, r) = last.expect("five runs");
+                rows.push(Row {
+                    method: r.stats.method,
+                    setting: label,
+                    impacts: r.impacts.len(),
+                    error: err,
+                    steps: r.stats.steps,
+                    f_evals: r.stats.f_evals,
+                    wall,
+                });
+            }
+            None => println!(
+                "{method:>18}: target not reached within the budget; best error {:.2e} at {}",
+                best.0, best.1
+            ),
+        }
+    }
+    println!(
+        "{:>18} {:>24} {:>7} {:>10} {:>9} {:>9} {:>10} {:>8}",
+        "method", "setting", "impacts", "F* error", "steps", "f-evals", "wall ms", "µs/step"
+    );
+    for r in &rows {
+        println!(
+            "{:>18} {:>24} {:>7} {:>10.2e} {:>9} {:>9} {:>10.3} {:>8.3}",
+            r.method,
+            r.setting,
+            r.impacts,
+            r.error,
+            r.steps,
+            r.f_evals,
+            1e3 * r.wall,
+            1e6 * r.wall / r.steps.max(1) as f64
+        );
+    }
+    let fastest = rows.iter().min_by(|a, b| a.wall.total_cmp(&b.wall));
+    let multistep = rows
+        .iter()
+        .filter(|r| matches!(r.method, "bdf" | "adams"))
+        .map(|r| r.steps)
+        .min();
+    if let (Some(f), Some(n)) = (fastest, multistep) {
+        let (lo, hi) = (8e-6 * n as f64, 23e-6 * n as f64);
+        println!(
+            "fastest: {} in {:.3} ms. ESTIMATE (not a measurement of scipy): LSODA at 8–23 µs/step (the issue's quoted cost) over {n} steps (our variable-order bdf/adams step count at this accuracy) ≈ {:.1}–{:.1} ms, i.e. {:.0}–{:.0}× the fastest method here.",
+            f.method,
+            1e3 * f.wall,
+            1e3 * lo,
+            1e3 * hi,
+            lo / f.wall,
+            hi / f.wall
+        );
+    }
+    println!(
+        "wall = best of 5 runs of the full 1 s drop without time-series recording; one thread."
+    );
+    Ok(())
+}
