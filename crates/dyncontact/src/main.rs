@@ -12,6 +12,7 @@ mod modes_cli;
 mod moving_load_cli;
 mod output;
 mod plot;
+mod vehicle_bridge_cli;
 
 use std::path::{Path, PathBuf};
 
@@ -21,7 +22,7 @@ use clap::{Parser, Subcommand, ValueEnum};
 /// The built-in default scenario of `dyncontact run`.
 const DEFAULT_SCENARIO: &str = include_str!("../scenarios/default.toml");
 /// Scenario kinds `run` understands (keep in step with `run_scenario`).
-const SCENARIO_KINDS: &[&str] = &["ball_drop", "contact", "moving_load"];
+const SCENARIO_KINDS: &[&str] = &["ball_drop", "contact", "moving_load", "vehicle_bridge"];
 const DEFAULT_SCENARIO_PATH: &str = "crates/dyncontact/scenarios/default.toml";
 
 #[derive(Parser)]
@@ -94,6 +95,9 @@ enum BenchTarget {
     /// The ball drop (1 s, 4 bounces) with every integrator at 1e-6 accuracy in the first
     /// peak force: wall time, steps, f-evaluations.
     Integrators,
+    /// The default vehicle-bridge scenario with BEM contact (32 × 32) at every step, Picard
+    /// and quasi-Newton coupling: wall time per step, simulated/wall time, iterations.
+    Coupling,
 }
 
 fn main() {
@@ -133,6 +137,7 @@ fn run_cli() -> Result<()> {
             BenchTarget::Contact => bench::contact(max_n),
             BenchTarget::Beam => bench::beam(),
             BenchTarget::Integrators => ball_drop_cli::bench_integrators(1e-6),
+            BenchTarget::Coupling => vehicle_bridge_cli::bench(vehicle_bridge_cli::DEFAULT),
         },
     }
 }
@@ -179,6 +184,7 @@ fn run_scenario(
         "ball_drop" => ball_drop_cli::run(&text, out, json, integrator),
         "contact" => run_contact(&text, &base, json, Some(out)),
         "moving_load" => moving_load_cli::run(&text, out, json),
+        "vehicle_bridge" => vehicle_bridge_cli::run(&text, out, json),
         other => bail!(
             "unknown `kind` = \"{other}\" (known kinds: {})",
             SCENARIO_KINDS.join(", ")

@@ -655,7 +655,7 @@ impl Simulation {
                 let ncol = self.laws[k].columns().len();
                 let zero = vec![0.0; ncol];
                 let mut cf = vec![0.0; ncol];
-                self.laws[k].evaluate(delta, &zero, &mut cf)?
+                self.laws[k].evaluate(delta, &zero, &mut cf, true)?
             };
             out.iterations = 0;
             self.samples[k] = WheelSample {
@@ -750,6 +750,29 @@ impl Simulation {
         let v = (0..m).map(|j| self.stepper.v()[j] * s[j]).sum();
         let a = (0..m).map(|j| self.stepper.a()[j] * s[j]).sum();
         (d, v, a)
+    }
+
+    /// Quasi-static deflection at the output point under the static wheel loads at their
+    /// current positions, `Σ_k W_k Σ_j w_j(x_out) w_j(x_k)/(m_j ω_j²)` [m] (same modal basis;
+    /// `None` if the basis has a rigid-body mode, ω_j = 0).
+    pub fn quasi_static_output_deflection(&self) -> Result<Option<f64>, VehicleBridgeError> {
+        let basis = &*self.scenario.bridge;
+        let omegas = basis.circular_frequencies();
+        if omegas.iter().any(|&w| w <= 0.0) {
+            return Ok(None);
+        }
+        let mut total = 0.0;
+        for (k, sample) in self.samples.iter().enumerate() {
+            let x = sample.position;
+            if !(0.0..=basis.length()).contains(&x) {
+                continue;
+            }
+            for j in 0..basis.n_modes() {
+                total += self.static_loads[k] * self.output_shapes[j] * basis.shape(j, x)?
+                    / (basis.modal_mass(j)? * omegas[j] * omegas[j]);
+            }
+        }
+        Ok(Some(total))
     }
 
     /// The centreline pressure of wheel `k`'s last contact evaluation (ξ [m], p [Pa]).
@@ -872,7 +895,7 @@ impl Simulation {
     }
 
     /// Evaluates every contact at the iterate `work.x`: approach, force, modal loads, ĝ and v.
-    fn evaluate_contacts(&mut self) -> Result<(), VehicleBridgeError> {
+    fn evaluate_contacts(&mut self, tangent: bool) -> Result<(), VehicleBridgeError> {
         let m = self.scenario.bridge.n_modes();
         let w = &mut self.work;
         for k in 0..self.laws.len() {
@@ -896,7 +919,7 @@ impl Simulation {
                     let wc: f64 = (0..m).map(|j| w.x[j] * cs[j]).sum();
                     w.column_gap[k][i] = (wc - defl) - (w.r_at_columns[k][i] - w.r_at_wheel[k]);
                 }
-                law.evaluate(delta, &w.column_gap[k], &mut w.column_force[k])?
+                law.evaluate(delta, &w.column_gap[k], &mut w.column_force[k], tangent)?
             };
             w.outputs[k] = out;
             let load = &mut w.modal_load[k];
@@ -967,7 +990,12 @@ impl Simulation {
         let mut growth = 0;
         for it in 1..=self.scenario.coupling.max_iter {
             iterations = it;
-            if let Err(e) = self.evaluate_contacts() {
+            let tangent = match solver {
+                CouplingSolver::Newton => true,
+                CouplingSolver::QuasiNewton => it == 1,
+                CouplingSolver::Picard => false,
+            };
+            if let Err(e) = self.evaluate_contacts(tangent) {
                 return Err(StepFailure {
                     iterations,
                     change,
@@ -1103,6 +1131,40 @@ impl Simulation {
                     reason: "non-finite state".to_string(),
                     fatal: None,
                 });
+            }
+            // (Quasi-)Newton: when every wheel is in contact and the predicted force
+            // corrections are within the tolerance, accept the corrected state with the
+            // linearised forces F + ΔF (error O(ΔF²)) without another contact evaluation.
+            if solver != CouplingSolver::Picard && w.active.len() == nw {
+                let predicted = w.df[..nw].iter().fold(0.0f64, |m, d| m.max(d.abs()));
+                let all_positive = w
+                    .active
+                    .iter()
+                    .enumerate()
+                    .all(|(a, &k)| w.outputs[k].force + w.df[a] > 0.0);
+                if predicted <= tol && all_positive {
+                    for (a, &k) in w.active.iter().enumerate() {
+                        let f_old = w.outputs[k].force;
+                        let f_new = if self.laws[k].is_rigid() {
+                            self.forces[k]
+                        } else {
+                            f_old + w.df[a]
+                        };
+                        if f_old > 0.0 {
+                            let scale = f_new / f_old;
+                            w.modal_load[k].iter_mut().for_each(|l| *l *= scale);
+                        } else {
+                            for (l, sh) in w.modal_load[k].iter_mut().zip(&w.shape_at_wheel[k]) {
+                                *l = f_new * sh;
+                            }
+                        }
+                        w.outputs[k].force = f_new;
+                        w.delta[k] = linalg::dot(&w.v[k], &w.x) + w.r_at_wheel[k];
+                    }
+                    change = predicted;
+                    converged = true;
+                    break;
+                }
             }
         }
         if !converged {

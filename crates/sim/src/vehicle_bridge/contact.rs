@@ -62,12 +62,15 @@ pub trait ContactLaw: std::fmt::Debug {
 
     /// Evaluates the law at approach `delta` with the column gap terms `column_gap` (see the
     /// module documentation; length = number of columns), writing the force of each column
-    /// into `column_force`.
+    /// into `column_force`. With `tangent = false` a law may return the tangent of its previous
+    /// evaluation instead of computing a new one (the quasi-Newton iterations of one step reuse
+    /// the tangent of the step's first evaluation).
     fn evaluate(
         &mut self,
         delta: f64,
         column_gap: &[f64],
         column_force: &mut [f64],
+        tangent: bool,
     ) -> Result<ContactOutput, VehicleBridgeError>;
 }
 
@@ -179,6 +182,7 @@ impl ContactLaw for HertzLaw {
         delta: f64,
         _column_gap: &[f64],
         column_force: &mut [f64],
+        _tangent: bool,
     ) -> Result<ContactOutput, VehicleBridgeError> {
         if delta <= 0.0 {
             column_force[0] = 0.0;
@@ -237,6 +241,7 @@ impl ContactLaw for RigidLaw {
         delta: f64,
         _column_gap: &[f64],
         column_force: &mut [f64],
+        _tangent: bool,
     ) -> Result<ContactOutput, VehicleBridgeError> {
         column_force[0] = delta.max(0.0);
         Ok(ContactOutput {
@@ -257,6 +262,7 @@ pub struct BemLaw {
     gap: Vec<f64>,
     pressure: Vec<f64>,
     columns: Vec<f64>,
+    last_stiffness: f64,
 }
 
 impl BemLaw {
@@ -302,6 +308,7 @@ impl BemLaw {
             grid,
             gap: base_gap.clone(),
             pressure: vec![0.0; base_gap.len()],
+            last_stiffness: 0.0,
             base_gap,
             columns,
         })
@@ -352,6 +359,7 @@ impl ContactLaw for BemLaw {
         delta: f64,
         column_gap: &[f64],
         column_force: &mut [f64],
+        tangent: bool,
     ) -> Result<ContactOutput, VehicleBridgeError> {
         let nx = self.grid.nx;
         let mut min_gap = f64::INFINITY;
@@ -364,7 +372,17 @@ impl ContactLaw for BemLaw {
             self.pressure.fill(0.0);
             return Ok(ContactOutput::default());
         }
+        // The sensitivity solve is skipped when the caller reuses the previous tangent (and
+        // there is one).
+        self.options.sensitivity = tangent || self.last_stiffness <= 0.0;
         let solution = self.solve(NormalLoad::Approach(delta))?;
+        let stiffness = match solution.dfn_dapproach {
+            Some(k) if self.options.sensitivity => {
+                self.last_stiffness = k;
+                k
+            }
+            _ => self.last_stiffness,
+        };
         let area = self.grid.element_area();
         for (k, p) in solution.pressure.iter().enumerate() {
             column_force[k % nx] += p * area;
@@ -377,7 +395,7 @@ impl ContactLaw for BemLaw {
         self.pressure.copy_from_slice(&solution.pressure);
         Ok(ContactOutput {
             force: solution.normal_force,
-            stiffness: solution.dfn_dapproach.unwrap_or(0.0),
+            stiffness,
             patch_length: 2.0 * a,
             patch_width: 2.0 * b,
             max_pressure: solution.max_pressure,
