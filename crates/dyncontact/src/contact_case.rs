@@ -1,14 +1,17 @@
 //! `dyncontact contact CASE.toml`: the quasi-static normal contact problem from a case file.
 //!
-//! Every key is in SI units; unknown keys are errors. See the README for the schema.
+//! Every key is in SI units; unknown keys are errors. See the README for the schema, and
+//! docs/tangential.md for the [friction] and [kinematics] sections (tangential contact).
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{Context, Result, anyhow, bail};
 use halfspace::{
-    Body, ContactError, GapShape, Grid, Hertz, LineHertz, Material, NormalLoad, NormalSolution,
-    NormalSolver, SolverOptions, auto_grid, curvatures_from_radii,
+    Body, ContactError, Creepages, ElementState, FastsimInput, GapShape, Grid, Hertz, LineHertz,
+    Material, NormalLoad, NormalSolution, NormalSolver, RollingLoad, ShiftLoad, SolverOptions,
+    TangentialOptions, TangentialSolution, TangentialSolver, auto_grid, curvatures_from_radii,
+    fastsim, linear_forces,
 };
 use serde::{Deserialize, Serialize};
 
@@ -28,6 +31,71 @@ pub struct ContactCase {
     pub grid: Option<GridSpec>,
     pub load: LoadSpec,
     pub solver: Option<SolverSpec>,
+    /// Coulomb friction (needed by [kinematics]).
+    pub friction: Option<FrictionSpec>,
+    /// Tangential problem: rolling or shift (see docs/tangential.md).
+    pub kinematics: Option<KinematicsSpec>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrictionSpec {
+    pub mu: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct KinematicsSpec {
+    /// "rolling" (steady rolling) or "shift" (Cattaneo–Mindlin).
+    pub problem: Option<String>,
+    pub creepage_x: Option<f64>,
+    pub creepage_y: Option<f64>,
+    /// Spin [1/m].
+    pub spin: Option<f64>,
+    /// Rigid shift [m] (shift problem).
+    pub shift_x: Option<f64>,
+    pub shift_y: Option<f64>,
+    /// Prescribed tangential forces [N].
+    pub force_x: Option<f64>,
+    pub force_y: Option<f64>,
+    /// "exact" (default), "fastsim" or "linear".
+    pub method: Option<String>,
+}
+
+/// How the tangential problem is solved.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TangentialMethod {
+    /// The half-space solver (ConvexGS/SteadyGS).
+    Exact,
+    /// FASTSIM on the Hertz ellipse.
+    Fastsim,
+    /// Kalker's linear theory on the Hertz ellipse.
+    Linear,
+}
+
+impl TangentialMethod {
+    pub fn name(self) -> &'static str {
+        match self {
+            TangentialMethod::Exact => "exact",
+            TangentialMethod::Fastsim => "fastsim",
+            TangentialMethod::Linear => "linear",
+        }
+    }
+}
+
+/// The tangential problem of a case.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum TangentialTask {
+    Rolling(RollingLoad),
+    Shift(ShiftLoad),
+}
+
+/// A validated [friction] + [kinematics] pair.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TangentialCase {
+    pub mu: f64,
+    pub task: TangentialTask,
+    pub method: TangentialMethod,
 }
 
 #[derive(Debug, Deserialize)]
@@ -97,6 +165,127 @@ pub struct PreparedCase {
     pub gap: Vec<f64>,
     pub load: NormalLoad,
     pub options: SolverOptions,
+    /// Friction coefficient, when [friction] is given.
+    pub mu: Option<f64>,
+    /// The tangential problem, when [kinematics] is given.
+    pub tangential: Option<TangentialCase>,
+}
+
+fn finite_key(section: &str, key: &str, value: Option<f64>) -> Result<Option<f64>> {
+    match value {
+        Some(v) if !v.is_finite() => bail!("[{section}] `{key}` = {v}: must be a finite number"),
+        other => Ok(other),
+    }
+}
+
+/// Validate [friction] and [kinematics].
+fn tangential_case(
+    friction: Option<&FrictionSpec>,
+    kin: Option<&KinematicsSpec>,
+) -> Result<(Option<f64>, Option<TangentialCase>)> {
+    let mu = match friction {
+        None => None,
+        Some(f) => {
+            let mu = f.mu.ok_or_else(|| {
+                anyhow!("[friction]: missing `mu` (Coulomb friction coefficient)")
+            })?;
+            if !mu.is_finite() || mu <= 0.0 {
+                bail!("[friction] `mu` = {mu}: must be a positive number");
+            }
+            Some(mu)
+        }
+    };
+    let Some(k) = kin else {
+        return Ok((mu, None));
+    };
+    let mu = mu.ok_or_else(|| anyhow!("[kinematics] needs a [friction] section with `mu`"))?;
+    let cx = finite_key("kinematics", "creepage_x", k.creepage_x)?;
+    let cy = finite_key("kinematics", "creepage_y", k.creepage_y)?;
+    let spin = finite_key("kinematics", "spin", k.spin)?;
+    let sx = finite_key("kinematics", "shift_x", k.shift_x)?;
+    let sy = finite_key("kinematics", "shift_y", k.shift_y)?;
+    let fx = finite_key("kinematics", "force_x", k.force_x)?;
+    let fy = finite_key("kinematics", "force_y", k.force_y)?;
+    let has_creep = cx.is_some() || cy.is_some();
+    let has_shift = sx.is_some() || sy.is_some();
+    let has_force = fx.is_some() || fy.is_some();
+    let problem = match k.problem.as_deref() {
+        Some("rolling") => "rolling",
+        Some("shift") => "shift",
+        Some(other) => {
+            bail!("[kinematics] `problem` = \"{other}\": expected \"rolling\" or \"shift\"")
+        }
+        None if has_shift => "shift",
+        None => "rolling",
+    };
+    let method = match k.method.as_deref() {
+        None | Some("exact") => TangentialMethod::Exact,
+        Some("fastsim") => TangentialMethod::Fastsim,
+        Some("linear") => TangentialMethod::Linear,
+        Some(other) => bail!(
+            "[kinematics] `method` = \"{other}\": expected \"exact\", \"fastsim\" or \"linear\""
+        ),
+    };
+    let task = if problem == "rolling" {
+        for (key, set) in [("shift_x", sx.is_some()), ("shift_y", sy.is_some())] {
+            if set {
+                bail!("[kinematics] key `{key}` is not used by problem = \"rolling\"");
+            }
+        }
+        match (has_creep, has_force) {
+            (true, true) => bail!(
+                "[kinematics]: give either the creepages `creepage_x`, `creepage_y` or the forces `force_x`, `force_y`, not both"
+            ),
+            (false, false) if spin.is_none() => bail!(
+                "[kinematics]: missing `creepage_x`/`creepage_y`/`spin` or `force_x`/`force_y`"
+            ),
+            (false, true) => TangentialTask::Rolling(RollingLoad::Forces {
+                fx: fx.unwrap_or(0.0),
+                fy: fy.unwrap_or(0.0),
+                phi: spin.unwrap_or(0.0),
+            }),
+            _ => TangentialTask::Rolling(RollingLoad::Creepages(Creepages {
+                xi: cx.unwrap_or(0.0),
+                eta: cy.unwrap_or(0.0),
+                phi: spin.unwrap_or(0.0),
+            })),
+        }
+    } else {
+        for (key, set) in [
+            ("creepage_x", cx.is_some()),
+            ("creepage_y", cy.is_some()),
+            ("spin", spin.is_some()),
+        ] {
+            if set {
+                bail!("[kinematics] key `{key}` is not used by problem = \"shift\"");
+            }
+        }
+        match (has_shift, has_force) {
+            (true, true) => bail!(
+                "[kinematics]: give either the shift `shift_x`, `shift_y` or the forces `force_x`, `force_y`, not both"
+            ),
+            (false, false) => {
+                bail!("[kinematics]: missing `shift_x`/`shift_y` or `force_x`/`force_y`")
+            }
+            (true, false) => TangentialTask::Shift(ShiftLoad::Shift {
+                wx: sx.unwrap_or(0.0),
+                wy: sy.unwrap_or(0.0),
+            }),
+            (false, true) => TangentialTask::Shift(ShiftLoad::Forces {
+                fx: fx.unwrap_or(0.0),
+                fy: fy.unwrap_or(0.0),
+            }),
+        }
+    };
+    if method != TangentialMethod::Exact
+        && !matches!(task, TangentialTask::Rolling(RollingLoad::Creepages(_)))
+    {
+        bail!(
+            "[kinematics] `method` = \"{}\" needs problem = \"rolling\" with creepages (forces and shifts need method = \"exact\")",
+            method.name()
+        );
+    }
+    Ok((Some(mu), Some(TangentialCase { mu, task, method })))
 }
 
 /// Parse a case file's text (`base` resolves relative table paths).
@@ -355,6 +544,16 @@ fn prepare(case: ContactCase, base: &Path) -> Result<PreparedCase> {
             options.max_iter = m;
         }
     }
+    let (mu, tangential) = tangential_case(case.friction.as_ref(), case.kinematics.as_ref())?;
+    if let Some(t) = &tangential
+        && t.method != TangentialMethod::Exact
+        && !matches!(shape, GapShape::Quadratic { .. } | GapShape::Sphere { .. })
+    {
+        bail!(
+            "[kinematics] `method` = \"{}\" needs a Hertzian gap ([gap] kind = \"quadratic\" or \"sphere\")",
+            t.method.name()
+        );
+    }
     Ok(PreparedCase {
         material,
         shape,
@@ -362,6 +561,8 @@ fn prepare(case: ContactCase, base: &Path) -> Result<PreparedCase> {
         gap,
         load,
         options,
+        mu,
+        tangential,
     })
 }
 
@@ -385,6 +586,40 @@ pub struct ContactSummary {
     pub hertz: Option<HertzSummary>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub hertz_line: Option<LineHertzSummary>,
+    /// Tangential results (top-level keys), when [kinematics] is given.
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    pub tangential: Option<TangentialSummary>,
+}
+
+/// Tangential results in the JSON summary (SI units; forces on body 1).
+#[derive(Debug, Serialize)]
+pub struct TangentialSummary {
+    pub tangential_method: String,
+    pub tangential_problem: String,
+    pub mu: f64,
+    pub tangential_force_x: f64,
+    pub tangential_force_y: f64,
+    /// M_z [N m] about the coordinate origin (null for the linear theory: C₃₃ is not tabulated).
+    pub spin_moment: Option<f64>,
+    pub adhesion_elements: Option<usize>,
+    pub slip_elements: Option<usize>,
+    /// Rolling: creepages used or found.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub creepage_x: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub creepage_y: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spin: Option<f64>,
+    /// Shift: rigid shift used or found [m].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shift_x: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shift_y: Option<f64>,
+    /// Rolling: frictional power per unit rolling speed [N] (× V gives W); shift: work [J].
+    pub frictional_power: Option<f64>,
+    pub tangential_iterations: Option<usize>,
+    pub newton_iterations: Option<usize>,
+    pub tangential_time_s: f64,
 }
 
 #[derive(Debug, Serialize)]
@@ -427,6 +662,131 @@ pub struct LineHertzSummary {
 pub struct CaseOutcome {
     pub summary: ContactSummary,
     pub solution: NormalSolution,
+    /// The exact tangential solution, when [kinematics] with method = "exact" is given.
+    pub tangential: Option<TangentialSolution>,
+}
+
+/// The Hertz ellipse (a, b) [m] of the case's quadratic gap at normal force `fn_`.
+pub fn hertz_axes(case: &PreparedCase, fn_: f64) -> Result<(f64, f64)> {
+    let h = case
+        .shape
+        .hertz(&case.material, NormalLoad::Force(fn_))
+        .ok_or_else(|| anyhow!("[gap]: FASTSIM and the linear theory need a Hertzian gap"))?;
+    Ok((h.a, h.b))
+}
+
+/// Solve the tangential problem of a case for the normal solution `normal`.
+pub fn solve_tangential(
+    case: &PreparedCase,
+    t: &TangentialCase,
+    normal: &NormalSolution,
+) -> Result<(TangentialSummary, Option<TangentialSolution>)> {
+    let start = Instant::now();
+    let problem = match t.task {
+        TangentialTask::Rolling(_) => "rolling",
+        TangentialTask::Shift(_) => "shift",
+    };
+    let m = case.material;
+    let mut summary = TangentialSummary {
+        tangential_method: t.method.name().into(),
+        tangential_problem: problem.into(),
+        mu: t.mu,
+        tangential_force_x: 0.0,
+        tangential_force_y: 0.0,
+        spin_moment: None,
+        adhesion_elements: None,
+        slip_elements: None,
+        creepage_x: None,
+        creepage_y: None,
+        spin: None,
+        shift_x: None,
+        shift_y: None,
+        frictional_power: None,
+        tangential_iterations: None,
+        newton_iterations: None,
+        tangential_time_s: 0.0,
+    };
+    let mut exact = None;
+    match (t.method, t.task) {
+        (TangentialMethod::Exact, task) => {
+            let mut solver =
+                TangentialSolver::new(case.grid, m).map_err(|e| anyhow!("tangential: {e}"))?;
+            let opts = TangentialOptions::default();
+            let sol = match task {
+                TangentialTask::Rolling(load) => {
+                    solver.steady_rolling(&normal.pressure, t.mu, load, &opts)
+                }
+                TangentialTask::Shift(load) => solver.shift(&normal.pressure, t.mu, load, &opts),
+            }
+            .map_err(|e| anyhow!("tangential problem: {e}"))?;
+            summary.tangential_force_x = sol.force_x;
+            summary.tangential_force_y = sol.force_y;
+            summary.spin_moment = Some(sol.moment_z);
+            summary.adhesion_elements = Some(sol.adhesion_elements);
+            summary.slip_elements = Some(sol.slip_elements);
+            if problem == "rolling" {
+                summary.creepage_x = Some(sol.creepages.xi);
+                summary.creepage_y = Some(sol.creepages.eta);
+                summary.spin = Some(sol.creepages.phi);
+            } else {
+                summary.shift_x = Some(sol.shift.0);
+                summary.shift_y = Some(sol.shift.1);
+            }
+            summary.frictional_power = Some(sol.frictional_power);
+            summary.tangential_iterations = Some(sol.iterations);
+            summary.newton_iterations = Some(sol.newton_iterations);
+            exact = Some(sol);
+        }
+        (method, TangentialTask::Rolling(RollingLoad::Creepages(c))) => {
+            let (a, b) = hertz_axes(case, normal.normal_force)?;
+            summary.creepage_x = Some(c.xi);
+            summary.creepage_y = Some(c.eta);
+            summary.spin = Some(c.phi);
+            if method == TangentialMethod::Fastsim {
+                let f = fastsim_on(case, t.mu, normal.normal_force, a, b, c)?;
+                summary.tangential_force_x = f.force_x;
+                summary.tangential_force_y = f.force_y;
+                summary.spin_moment = Some(f.moment_z);
+                summary.adhesion_elements = Some(f.adhesion_elements);
+                summary.slip_elements = Some(f.slip_elements);
+                summary.frictional_power = Some(f.frictional_power_per_speed);
+            } else {
+                let (fx, fy) = linear_forces(m.g, m.nu, a, b, c.xi, c.eta, c.phi)
+                    .map_err(|e| anyhow!("linear theory: {e}"))?;
+                summary.tangential_force_x = fx;
+                summary.tangential_force_y = fy;
+            }
+        }
+        (method, _) => bail!(
+            "[kinematics] `method` = \"{}\" needs creepages",
+            method.name()
+        ),
+    }
+    summary.tangential_time_s = start.elapsed().as_secs_f64();
+    Ok((summary, exact))
+}
+
+/// FASTSIM on the Hertz ellipse (a, b) with the case grid's nx × ny elements.
+pub fn fastsim_on(
+    case: &PreparedCase,
+    mu: f64,
+    normal_force: f64,
+    a: f64,
+    b: f64,
+    c: Creepages,
+) -> Result<halfspace::FastsimSolution> {
+    let input = FastsimInput {
+        a,
+        b,
+        g: case.material.g,
+        nu: case.material.nu,
+        mu,
+        normal_force,
+        xi: c.xi,
+        eta: c.eta,
+        phi: c.phi,
+    };
+    fastsim(&input, case.grid.nx.max(2), case.grid.ny.max(2)).map_err(|e| anyhow!("FASTSIM: {e}"))
 }
 
 /// Solve a prepared case. A non-converged solve is returned with `converged = false`; the
@@ -440,6 +800,13 @@ pub fn solve(case: &PreparedCase) -> Result<CaseOutcome> {
         Err(e) => return Err(anyhow!("{e}")),
     };
     let solve_time_s = start.elapsed().as_secs_f64();
+    let (tangential_summary, tangential) = match &case.tangential {
+        Some(t) if solution.converged => {
+            let (s, e) = solve_tangential(case, t, &solution)?;
+            (Some(s), e)
+        }
+        _ => (None, None),
+    };
     let g = case.grid;
     let m = case.material;
     let hertz_load = match case.load {
@@ -499,8 +866,13 @@ pub fn solve(case: &PreparedCase) -> Result<CaseOutcome> {
         },
         hertz,
         hertz_line,
+        tangential: tangential_summary,
     };
-    Ok(CaseOutcome { summary, solution })
+    Ok(CaseOutcome {
+        summary,
+        solution,
+        tangential,
+    })
 }
 
 /// Human-readable summary.
@@ -559,6 +931,48 @@ pub fn print_summary(s: &ContactSummary) {
             100.0 * (s.max_pressure / h.max_pressure - 1.0)
         );
     }
+    if let Some(t) = &s.tangential {
+        println!(
+            "tangential contact ({}, {}), mu = {}",
+            t.tangential_problem, t.tangential_method, t.mu
+        );
+        println!(
+            "  force x, y        {:>14.6e} N, {:.6e} N  (|F|/(mu Fn) = {:.4})",
+            t.tangential_force_x,
+            t.tangential_force_y,
+            t.tangential_force_x.hypot(t.tangential_force_y) / (t.mu * s.normal_force)
+        );
+        if let Some(m) = t.spin_moment {
+            println!("  spin moment       {m:>14.6e} N m");
+        }
+        if let (Some(x), Some(y)) = (t.creepage_x, t.creepage_y) {
+            println!(
+                "  creepages         xi = {x:.6e}, eta = {y:.6e}, spin = {:.6e} 1/m",
+                t.spin.unwrap_or(0.0)
+            );
+        }
+        if let (Some(x), Some(y)) = (t.shift_x, t.shift_y) {
+            println!("  shift             ({x:.6e}, {y:.6e}) m");
+        }
+        if let (Some(a), Some(sl)) = (t.adhesion_elements, t.slip_elements) {
+            println!("  adhesion / slip   {a} / {sl} elements");
+        }
+        if let Some(p) = t.frictional_power {
+            let unit = if t.tangential_problem == "rolling" {
+                "N (power per unit rolling speed)"
+            } else {
+                "J (work of the shift)"
+            };
+            println!("  friction loss     {p:>14.6e} {unit}");
+        }
+        if let Some(i) = t.tangential_iterations {
+            println!(
+                "  Gauss-Seidel      {i} sweeps, {} Newton iterations, {:.3} ms",
+                t.newton_iterations.unwrap_or(0),
+                1e3 * t.tangential_time_s
+            );
+        }
+    }
 }
 
 /// Write pressure.csv, pressure.png and summary.json into `dir`.
@@ -592,7 +1006,81 @@ pub fn write_outputs(dir: &Path, outcome: &CaseOutcome) -> Result<()> {
         },
     )?;
     plot::panels(&dir.join("pressure_profile.png"), &[profile_panel(outcome)])?;
+    if let Some(t) = &outcome.tangential {
+        write_tangential_outputs(dir, t)?;
+    }
     output::write_json(&dir.join("summary.json"), &outcome.summary)
+}
+
+/// State code of an element in outputs: 0 exterior, 1 adhesion, 2 slip.
+fn state_code(s: ElementState) -> f64 {
+    match s {
+        ElementState::Exterior => 0.0,
+        ElementState::Adhesion => 1.0,
+        ElementState::Slip => 2.0,
+    }
+}
+
+/// traction.csv, traction_x.png, traction_y.png and adhesion_slip.png.
+fn write_tangential_outputs(dir: &Path, t: &TangentialSolution) -> Result<()> {
+    let g = t.grid;
+    output::write_csv(
+        &dir.join("traction.csv"),
+        &["x", "y", "px", "py", "state", "slip_x", "slip_y"],
+        (0..g.len()).map(|k| {
+            let (x, y) = g.centre(k);
+            vec![
+                x,
+                y,
+                t.traction_x[k],
+                t.traction_y[k],
+                state_code(t.state[k]),
+                t.slip_x[k],
+                t.slip_y[k],
+            ]
+        }),
+    )?;
+    let field = |values: &[f64]| -> Vec<f64> { values.iter().map(|v| v * 1e-6).collect() };
+    let (px, py) = (field(&t.traction_x), field(&t.traction_y));
+    let states: Vec<f64> = t.state.iter().map(|&s| state_code(s)).collect();
+    for (name, title, label, values) in [
+        (
+            "traction_x.png",
+            "tangential traction p_x",
+            "p_x [MPa]",
+            &px,
+        ),
+        (
+            "traction_y.png",
+            "tangential traction p_y",
+            "p_y [MPa]",
+            &py,
+        ),
+        (
+            "adhesion_slip.png",
+            "0 exterior, 1 adhesion, 2 slip",
+            "state",
+            &states,
+        ),
+    ] {
+        plot::heatmap(
+            &dir.join(name),
+            title,
+            "x [mm]",
+            "y [mm]",
+            label,
+            &plot::Field {
+                nx: g.nx,
+                ny: g.ny,
+                x0: g.x0 * 1e3,
+                y0: g.y0 * 1e3,
+                dx: g.dx * 1e3,
+                dy: g.dy * 1e3,
+                values,
+            },
+        )?;
+    }
+    Ok(())
 }
 
 /// Pressure along x on the grid row through the centre of pressure, with Hertz's profile

@@ -5,9 +5,11 @@
 
 mod ball_drop_cli;
 mod bench;
+mod bench_tangential;
 /// The `[bridge]` block shared by `modes`, `moving_load` and `vehicle_bridge` scenarios.
 mod bridge;
 mod contact_case;
+mod creep_curve_cli;
 mod modes_cli;
 mod moving_load_cli;
 mod output;
@@ -76,6 +78,27 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// Creep force against creepage in steady rolling: exact, FASTSIM and linear theory
+    /// (a contact case with [friction]; see docs/tangential.md).
+    CreepCurve {
+        /// Case file (TOML) with [friction] mu.
+        file: PathBuf,
+        /// Sweep the longitudinal creepage: start:stop:count.
+        #[arg(long)]
+        creepage_x: Option<String>,
+        /// Sweep the lateral creepage: start:stop:count.
+        #[arg(long)]
+        creepage_y: Option<String>,
+        /// Sweep the spin [1/m]: start:stop:count.
+        #[arg(long)]
+        spin: Option<String>,
+        /// Output directory for creep_curve.csv, creep_curve.json, creep_curve.png.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+        /// Print the JSON on standard output instead of the table.
+        #[arg(long)]
+        json: bool,
+    },
     /// Benchmarks: print a table of timings.
     Bench {
         /// What to benchmark.
@@ -98,6 +121,8 @@ enum BenchTarget {
     /// The default vehicle-bridge scenario with BEM contact (32 × 32) at every step, Picard
     /// and quasi-Newton coupling: wall time per step, simulated/wall time, iterations.
     Coupling,
+    /// Tangential contact: steady rolling on 44 × 44 (time, sweeps) and a 41-point creep curve.
+    Tangential,
 }
 
 fn main() {
@@ -138,7 +163,26 @@ fn run_cli() -> Result<()> {
             BenchTarget::Beam => bench::beam(),
             BenchTarget::Integrators => ball_drop_cli::bench_integrators(1e-6),
             BenchTarget::Coupling => vehicle_bridge_cli::bench(vehicle_bridge_cli::DEFAULT),
+            BenchTarget::Tangential => bench_tangential::tangential(),
         },
+        Command::CreepCurve {
+            file,
+            creepage_x,
+            creepage_y,
+            spin,
+            out,
+            json,
+        } => creep_curve_cli::run(
+            &read(&file)?,
+            base_dir(&file),
+            [
+                creepage_x.as_deref(),
+                creepage_y.as_deref(),
+                spin.as_deref(),
+            ],
+            &out,
+            json,
+        ),
     }
 }
 
