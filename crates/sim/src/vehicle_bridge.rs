@@ -988,6 +988,9 @@ impl Simulation {
         let mut iterations = 0;
         let mut contact_iterations = 0;
         let mut growth = 0;
+        // A rigid multiplier was clipped at zero in the last update (the state then does not
+        // match the forces, so another iteration is needed).
+        let mut clamped = false;
         for it in 1..=self.scenario.coupling.max_iter {
             iterations = it;
             let tangent = match solver {
@@ -1029,7 +1032,7 @@ impl Simulation {
                         fatal: None,
                     });
                 }
-                if change <= tol {
+                if change <= tol && !clamped {
                     converged = true;
                     break;
                 }
@@ -1103,8 +1106,10 @@ impl Simulation {
                             &mut w.dense,
                         )
                     };
+                    clamped = false;
                     for (a, &k) in w.active.iter().enumerate() {
                         if self.laws[k].is_rigid() {
+                            clamped |= self.forces[k] + w.df[a] < 0.0;
                             let f_new = (self.forces[k] + w.df[a]).max(0.0);
                             w.last_df[k] = f_new - self.forces[k];
                             self.forces[k] = f_new;
@@ -1135,7 +1140,7 @@ impl Simulation {
             // (Quasi-)Newton: when every wheel is in contact and the predicted force
             // corrections are within the tolerance, accept the corrected state with the
             // linearised forces F + ΔF (error O(ΔF²)) without another contact evaluation.
-            if solver != CouplingSolver::Picard && w.active.len() == nw {
+            if solver != CouplingSolver::Picard && w.active.len() == nw && !clamped {
                 let predicted = w.df[..nw].iter().fold(0.0f64, |m, d| m.max(d.abs()));
                 let all_positive = w
                     .active
