@@ -51,6 +51,11 @@ pub enum ContactError {
         "Newton iteration on the creepages/shift did not converge in {iterations} iterations (force error {residual:e} N)"
     )]
     NewtonNotConverged { iterations: usize, residual: f64 },
+    /// The normal–tangential outer loop (K ≠ 0) stopped at its iteration limit.
+    #[error(
+        "normal-tangential outer loop did not converge in {iterations} iterations (relative change {residual:e})"
+    )]
+    CoupledNotConverged { iterations: usize, residual: f64 },
     /// A prescribed tangential force cannot be carried by friction.
     #[error("tangential force {force:e} N reaches the friction limit mu*Fn = {limit:e} N")]
     ForceExceedsFriction { force: f64, limit: f64 },

@@ -27,6 +27,7 @@
 //! ```
 
 pub mod convolution;
+pub mod coupled;
 pub mod error;
 pub mod fastsim;
 pub mod gap;
@@ -39,6 +40,7 @@ pub mod normcg;
 pub mod solution;
 pub mod tangential;
 
+pub use coupled::{CoupledOptions, CoupledProblem, CoupledSolution, solve_coupled};
 pub use error::ContactError;
 pub use fastsim::{FastsimInput, FastsimSolution, fastsim};
 pub use gap::{AUTO_GRID_ELEMENTS, AUTO_GRID_MARGIN, GapShape, auto_grid};

@@ -45,10 +45,12 @@
 //! 2 × 2 Jacobian by forward differences and step halving, started from the full-adhesion
 //! (linear) response; CONTACT does the same on the creepages (§3.5).
 //!
-//! **Limitations.** The normal–tangential coupling for K ≠ 0 is not included here: the
-//! tangential problem is solved for the given pressure (Johnson's process, exact for
-//! quasi-identical bodies); see [`crate::influence::TangentialInfluence`] for the coupling
-//! coefficients. Friction is Coulomb with a constant μ.
+//! **Dissimilar materials (K ≠ 0).** The pressure's own tangential displacement A_tn p_n
+//! (contact.md §3.2) enters W: A_tn p_n in a shift from the unloaded state,
+//! (A_tn − A_v,tn) p_n in steady rolling, A_tn p_n − A_v,tn p_n' in a transient step. The
+//! reverse effect of the tangential tractions on the normal problem is
+//! [`TangentialSolver::normal_displacement`]; [`crate::coupled`] alternates the two solves
+//! (Panagiotopoulos' process). Friction is Coulomb with a constant μ.
 
 use crate::convolution::{FftConvolution, KernelSpectrum};
 use crate::error::{ContactError, finite, positive};
@@ -231,6 +233,17 @@ impl KernelSet {
     }
 }
 
+/// Which coupling term enters W (K ≠ 0).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Coupling {
+    /// A_tn p_n (a shift from the unloaded state).
+    Direct,
+    /// (A_tn − A_v,tn(δx)) p_n (steady rolling).
+    Steady,
+    /// A_tn p_n − A_v,tn(δq) p_n' (a transient rolling step).
+    Shifted,
+}
+
 /// Which operator C the Gauss–Seidel iteration uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Operator {
@@ -263,6 +276,16 @@ pub struct TangentialSolver {
     slipping: Vec<bool>,
     bound: Vec<f64>,
     has_previous: bool,
+    /// Coupling kernels A_xn, A_yn (K ≠ 0 only): direct, steady (A − A_v at δx), shifted.
+    coupling: Option<[KernelSpectrum; 2]>,
+    coupling_steady: Option<[KernelSpectrum; 2]>,
+    coupling_shifted: Option<(f64, [KernelSpectrum; 2])>,
+    /// The pressure of the current solve and of the previous transient step.
+    pn: Vec<f64>,
+    pn_previous: Option<Vec<f64>>,
+    /// Tangential displacement difference from the pressure, added to W.
+    cnx: Vec<f64>,
+    cny: Vec<f64>,
 }
 
 impl TangentialSolver {
@@ -275,6 +298,14 @@ impl TangentialSolver {
         let tables: [Vec<f64>; 3] = t.try_into().expect("three components");
         let direct = KernelSet::new(&conv, &grid, tables);
         let n = grid.len();
+        let coupling = (material.k != 0.0).then(|| {
+            let t =
+                tangential_offset_tables(&material, &grid, 0.0, &[Component::Xn, Component::Yn]);
+            [
+                conv.kernel_spectrum(&circulant_from_centred(&grid, &t[0])),
+                conv.kernel_spectrum(&circulant_from_centred(&grid, &t[1])),
+            ]
+        });
         Ok(TangentialSolver {
             grid,
             material,
@@ -292,6 +323,13 @@ impl TangentialSolver {
             slipping: vec![false; n],
             bound: vec![0.0; n],
             has_previous: false,
+            coupling,
+            coupling_steady: None,
+            coupling_shifted: None,
+            pn: vec![0.0; n],
+            pn_previous: None,
+            cnx: vec![0.0; n],
+            cny: vec![0.0; n],
         })
     }
 
@@ -329,6 +367,17 @@ impl TangentialSolver {
             let tables: [Vec<f64>; 3] = diff.try_into().expect("three components");
             self.steady = Some(KernelSet::new(&self.conv, &g, tables));
         }
+        if self.coupling.is_some() && self.coupling_steady.is_none() {
+            let g = self.grid;
+            let c = [Component::Xn, Component::Yn];
+            let a = tangential_offset_tables(&self.material, &g, 0.0, &c);
+            let v = tangential_offset_tables(&self.material, &g, g.dx, &c);
+            let spec = |k: usize| {
+                let d: Vec<f64> = a[k].iter().zip(&v[k]).map(|(a, v)| a - v).collect();
+                self.conv.kernel_spectrum(&circulant_from_centred(&g, &d))
+            };
+            self.coupling_steady = Some([spec(0), spec(1)]);
+        }
     }
 
     fn ensure_shifted(&mut self, delta_q: f64) {
@@ -348,6 +397,82 @@ impl TangentialSolver {
                 .kernel_spectrum(&circulant_from_centred(&g, &v[2])),
         ];
         self.shifted = Some((delta_q, spectra));
+        if self.coupling.is_some() {
+            let c = tangential_offset_tables(
+                &self.material,
+                &g,
+                delta_q,
+                &[Component::Xn, Component::Yn],
+            );
+            let spectra = [
+                self.conv
+                    .kernel_spectrum(&circulant_from_centred(&g, &c[0])),
+                self.conv
+                    .kernel_spectrum(&circulant_from_centred(&g, &c[1])),
+            ];
+            self.coupling_shifted = Some((delta_q, spectra));
+        }
+    }
+
+    /// Use `pressure` as the previous step's pressure p_n' in the coupling term of the next
+    /// [`Self::transient_step`] (K ≠ 0 only; by default the current pressure is used, i.e.
+    /// the normal load is taken as quasi-steady).
+    pub fn set_previous_pressure(&mut self, pressure: &[f64]) -> Result<(), ContactError> {
+        self.check_len("previous pressure", pressure.len())?;
+        self.pn_previous = Some(pressure.to_vec());
+        Ok(())
+    }
+
+    /// Normal displacement difference caused by tangential tractions, u_n = A_nx p_x + A_ny p_y
+    /// with A_nx = −A_xn, A_ny = −A_yn (contact.md §3.2) [m]; zero for K = 0. The normal problem
+    /// of dissimilar bodies sees the gap h + u_n (used by [`crate::coupled`]).
+    pub fn normal_displacement(
+        &mut self,
+        traction_x: &[f64],
+        traction_y: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), ContactError> {
+        self.check_len("traction_x", traction_x.len())?;
+        self.check_len("traction_y", traction_y.len())?;
+        self.check_len("displacement", out.len())?;
+        match &self.coupling {
+            None => out.fill(0.0),
+            Some([kxn, kyn]) => {
+                self.conv.apply(kxn, traction_x, out);
+                self.conv.apply(kyn, traction_y, &mut self.tmp);
+                for (o, t) in out.iter_mut().zip(&self.tmp) {
+                    *o = -(*o + t);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The tangential displacement from the pressure, A_tn p_n (minus its shifted value of the
+    /// previous step in rolling), into `cnx`, `cny` (K ≠ 0).
+    fn prepare_coupling(&mut self, kind: Coupling) {
+        self.cnx.fill(0.0);
+        self.cny.fill(0.0);
+        if self.coupling.is_none() {
+            return;
+        }
+        let (spectra, subtract) = match kind {
+            Coupling::Direct => (self.coupling.clone().expect("checked"), None),
+            Coupling::Steady => (self.coupling_steady.clone().expect("built"), None),
+            Coupling::Shifted => (
+                self.coupling.clone().expect("checked"),
+                Some(self.coupling_shifted.as_ref().expect("built").1.clone()),
+            ),
+        };
+        self.conv.apply(&spectra[0], &self.pn, &mut self.cnx);
+        self.conv.apply(&spectra[1], &self.pn, &mut self.cny);
+        if let Some([sx, sy]) = subtract {
+            let prev = self.pn_previous.take().unwrap_or_else(|| self.pn.clone());
+            self.conv.apply(&sx, &prev, &mut self.tmp);
+            sub(&mut self.cnx, &self.tmp);
+            self.conv.apply(&sy, &prev, &mut self.tmp);
+            sub(&mut self.cny, &self.tmp);
+        }
     }
 
     /// Set the traction bound g = μ p_n and validate the inputs.
@@ -366,6 +491,7 @@ impl TangentialSolver {
             *g = mu * p;
             force += p;
         }
+        self.pn.copy_from_slice(pressure);
         let area = self.grid.element_area();
         if force <= 0.0 {
             return Err(ContactError::NoContact {
@@ -383,8 +509,8 @@ impl TangentialSolver {
             for ix in 0..g.nx {
                 let x = g.x(ix);
                 let k = iy * g.nx + ix;
-                self.bx[k] = delta_q * (c.xi - c.phi * y) + shift.0;
-                self.by[k] = delta_q * (c.eta + c.phi * x) + shift.1;
+                self.bx[k] = delta_q * (c.xi - c.phi * y) + shift.0 + self.cnx[k];
+                self.by[k] = delta_q * (c.eta + c.phi * x) + shift.1 + self.cny[k];
             }
         }
     }
@@ -400,6 +526,7 @@ impl TangentialSolver {
     ) -> Result<TangentialSolution, ContactError> {
         options.validate()?;
         let limit = self.set_bound(pressure, mu)?;
+        self.prepare_coupling(Coupling::Direct);
         match load {
             ShiftLoad::Shift { wx, wy } => {
                 finite("shift_x", wx)?;
@@ -438,6 +565,7 @@ impl TangentialSolver {
         options.validate()?;
         let limit = self.set_bound(pressure, mu)?;
         self.ensure_steady();
+        self.prepare_coupling(Coupling::Steady);
         let dq = self.grid.dx;
         match load {
             RollingLoad::Creepages(c) => {
@@ -497,6 +625,20 @@ impl TangentialSolver {
         motion.creepages.validate()?;
         finite("shift_x", motion.shift.0)?;
         finite("shift_y", motion.shift.1)?;
+        if motion.delta_q > 0.0 {
+            self.ensure_shifted(motion.delta_q);
+            self.prepare_coupling(Coupling::Shifted);
+        } else {
+            // A shift step: the pressure's own tangential displacement changes by
+            // A_tn (p_n − p_n').
+            self.prepare_coupling(Coupling::Direct);
+            if let (Some(prev), Some([kx, ky])) = (self.pn_previous.take(), self.coupling.clone()) {
+                self.conv.apply(&kx, &prev, &mut self.tmp);
+                sub(&mut self.cnx, &self.tmp);
+                self.conv.apply(&ky, &prev, &mut self.tmp);
+                sub(&mut self.cny, &self.tmp);
+            }
+        }
         self.set_rigid(motion.delta_q, motion.creepages, motion.shift);
         // b −= A_v p'  (A_v = A when δq = 0).
         let spectra: [KernelSpectrum; 3] = if motion.delta_q == 0.0 {

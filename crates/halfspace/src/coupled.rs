@@ -1,0 +1,140 @@
+//! Normal–tangential coupling for dissimilar materials (K ≠ 0): Panagiotopoulos' process.
+//!
+//! With K ≠ 0 the normal pressure displaces the surfaces tangentially (A_tn p_n) and the
+//! tangential tractions displace them normally (u_n = A_nx p_x + A_ny p_y, A_nx = −A_xn;
+//! contact.md §3.1–3.2). CONTACT alternates a normal solve with the gap h + u_n(p_t) and a
+//! tangential solve for the new pressure until neither changes (MAXOUT ≈ 20). For K = 0 one
+//! pass is exact (Johnson's process).
+//!
+//! Stopping rule: ‖Δp_n‖_rms ≤ tol ‖p_n‖_rms and ‖Δp_t‖_rms ≤ tol ‖p_t‖_rms (or p_t = 0)
+//! between outer iterations; otherwise [`ContactError::CoupledNotConverged`].
+
+use crate::error::{ContactError, positive};
+use crate::normcg::{NormalLoad, NormalSolver, SolverOptions};
+use crate::solution::NormalSolution;
+use crate::tangential::{
+    RollingLoad, ShiftLoad, TangentialOptions, TangentialSolution, TangentialSolver,
+};
+
+/// The tangential problem of a coupled solve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum CoupledProblem {
+    /// Shift from the unloaded state (normal and tangential load applied together).
+    Shift(ShiftLoad),
+    /// Steady rolling.
+    SteadyRolling(RollingLoad),
+}
+
+/// Controls of the outer loop.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CoupledOptions {
+    /// Relative change of p_n and p_t between outer iterations (default 1e-6).
+    pub tol: f64,
+    /// Outer iteration limit (default 30).
+    pub max_outer: usize,
+}
+
+impl Default for CoupledOptions {
+    fn default() -> Self {
+        CoupledOptions {
+            tol: 1e-6,
+            max_outer: 30,
+        }
+    }
+}
+
+/// Result of a coupled solve.
+#[derive(Debug, Clone)]
+pub struct CoupledSolution {
+    pub normal: NormalSolution,
+    pub tangential: TangentialSolution,
+    /// Outer iterations (1 for K = 0).
+    pub outer_iterations: usize,
+    /// The gap the last normal solve used, h + u_n(p_t) [m].
+    pub effective_gap: Vec<f64>,
+}
+
+fn rms_change(new: &[f64], old: &[f64]) -> (f64, f64) {
+    let d: f64 = new.iter().zip(old).map(|(a, b)| (a - b) * (a - b)).sum();
+    let n: f64 = new.iter().map(|a| a * a).sum();
+    (d.sqrt(), n.sqrt())
+}
+
+/// Solve the coupled normal and tangential problem (module documentation).
+#[allow(clippy::too_many_arguments)]
+pub fn solve_coupled(
+    normal: &mut NormalSolver,
+    tangential: &mut TangentialSolver,
+    gap: &[f64],
+    load: NormalLoad,
+    mu: f64,
+    problem: CoupledProblem,
+    normal_options: &SolverOptions,
+    tangential_options: &TangentialOptions,
+    options: &CoupledOptions,
+) -> Result<CoupledSolution, ContactError> {
+    positive("coupled tol", options.tol)?;
+    if options.max_outer == 0 {
+        return Err(ContactError::InvalidParameter {
+            name: "max_outer",
+            value: 0.0,
+            reason: "must be at least 1",
+        });
+    }
+    if normal.grid() != tangential.grid() {
+        return Err(ContactError::InvalidParameter {
+            name: "grid",
+            value: f64::NAN,
+            reason: "the normal and tangential solvers must share the grid",
+        });
+    }
+    let n = gap.len();
+    let decoupled = normal.material().k == 0.0;
+    let mut effective = gap.to_vec();
+    let mut un = vec![0.0; n];
+    let mut prev_pn: Option<Vec<f64>> = None;
+    let mut prev_pt: Option<(Vec<f64>, Vec<f64>)> = None;
+    let mut change = f64::INFINITY;
+    for outer in 1..=options.max_outer {
+        let ns = normal.solve(&effective, load, normal_options)?;
+        let ts = match problem {
+            CoupledProblem::Shift(l) => {
+                tangential.shift(&ns.pressure, mu, l, tangential_options)?
+            }
+            CoupledProblem::SteadyRolling(l) => {
+                tangential.steady_rolling(&ns.pressure, mu, l, tangential_options)?
+            }
+        };
+        let (dn, nn) = match &prev_pn {
+            Some(p) => rms_change(&ns.pressure, p),
+            None => (f64::INFINITY, 1.0),
+        };
+        let (dt, nt) = match &prev_pt {
+            Some((x, y)) => {
+                let (a, b) = rms_change(&ts.traction_x, x);
+                let (c, d) = rms_change(&ts.traction_y, y);
+                (a.hypot(c), b.hypot(d))
+            }
+            None => (f64::INFINITY, 1.0),
+        };
+        change = (dn / nn.max(f64::MIN_POSITIVE)).max(if nt > 0.0 { dt / nt } else { 0.0 });
+        if decoupled || change <= options.tol {
+            return Ok(CoupledSolution {
+                normal: ns,
+                tangential: ts,
+                outer_iterations: outer,
+                effective_gap: effective,
+            });
+        }
+        tangential.normal_displacement(&ts.traction_x, &ts.traction_y, &mut un)?;
+        for ((e, h), u) in effective.iter_mut().zip(gap).zip(&un) {
+            *e = h + u;
+        }
+        prev_pn = Some(ns.pressure);
+        prev_pt = Some((ts.traction_x, ts.traction_y));
+    }
+    Err(ContactError::CoupledNotConverged {
+        iterations: options.max_outer,
+        residual: change,
+    })
+}
