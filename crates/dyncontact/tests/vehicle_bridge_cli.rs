@@ -201,8 +201,8 @@ fn biggs_sprung_mass_example_matches_independent_two_dof_integration() {
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let (l, ei, rho, mv, kv, c, g) = (25.0, 2.87e9 * 2.90, 2303.0, 5750.0, 1595e3, 27.78, 9.81);
     let pi = std::f64::consts::PI;
-    let omega = (pi / l).powi(2) * (ei / rho as f64).sqrt();
-    let amp = (2.0 / (rho * l) as f64).sqrt();
+    let omega = (pi / l).powi(2) * (ei / rho).sqrt();
+    let amp = (2.0 / (rho * l)).sqrt();
     let phi = |t: f64| {
         let x = c * t;
         if (0.0..=l).contains(&x) {
