@@ -199,7 +199,8 @@ fn biggs_sprung_mass_example_matches_independent_two_dof_integration() {
         String::from_utf8_lossy(&out.stderr)
     );
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    let (l, ei, rho, mv, kv, c, g) = (25.0, 2.87e9 * 2.90, 2303.0, 5750.0, 1595e3, 27.78, 9.81);
+    let (l, ei, rho, mv, kv, c, g): (f64, f64, f64, f64, f64, f64, f64) =
+        (25.0, 2.87e9 * 2.90, 2303.0, 5750.0, 1595e3, 27.78, 9.81);
     let pi = std::f64::consts::PI;
     let omega = (pi / l).powi(2) * (ei / rho).sqrt();
     let amp = (2.0 / (rho * l)).sqrt();
