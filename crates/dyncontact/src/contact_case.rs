@@ -8,10 +8,10 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, anyhow, bail};
 use halfspace::{
-    Body, ContactError, Creepages, ElementState, FastsimInput, GapShape, Grid, Hertz, LineHertz,
-    Material, NormalLoad, NormalSolution, NormalSolver, RollingLoad, ShiftLoad, SolverOptions,
-    TangentialOptions, TangentialSolution, TangentialSolver, auto_grid, curvatures_from_radii,
-    fastsim, linear_forces,
+    Body, ContactError, CoupledOptions, CoupledProblem, Creepages, ElementState, FastsimInput,
+    GapShape, Grid, Hertz, LineHertz, Material, NormalLoad, NormalSolution, NormalSolver,
+    RollingLoad, ShiftLoad, SolverOptions, TangentialOptions, TangentialSolution, TangentialSolver,
+    auto_grid, curvatures_from_radii, fastsim, linear_forces, solve_coupled,
 };
 use serde::{Deserialize, Serialize};
 
@@ -619,6 +619,9 @@ pub struct TangentialSummary {
     pub frictional_power: Option<f64>,
     pub tangential_iterations: Option<usize>,
     pub newton_iterations: Option<usize>,
+    /// Normal–tangential outer iterations (K ≠ 0 with the exact method; absent otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub outer_iterations: Option<usize>,
     pub tangential_time_s: f64,
 }
 
@@ -704,6 +707,7 @@ pub fn solve_tangential(
         frictional_power: None,
         tangential_iterations: None,
         newton_iterations: None,
+        outer_iterations: None,
         tangential_time_s: 0.0,
     };
     let mut exact = None;
@@ -766,6 +770,65 @@ pub fn solve_tangential(
     Ok((summary, exact))
 }
 
+/// The coupled normal–tangential solve of a case with K ≠ 0 (Panagiotopoulos' process).
+fn solve_coupled_case(
+    case: &PreparedCase,
+    t: &TangentialCase,
+) -> Result<(NormalSolution, TangentialSummary, TangentialSolution)> {
+    let start = Instant::now();
+    let mut normal = NormalSolver::new(case.grid, case.material).map_err(|e| anyhow!("{e}"))?;
+    let mut tang = TangentialSolver::new(case.grid, case.material).map_err(|e| anyhow!("{e}"))?;
+    let problem = match t.task {
+        TangentialTask::Rolling(l) => CoupledProblem::SteadyRolling(l),
+        TangentialTask::Shift(l) => CoupledProblem::Shift(l),
+    };
+    let c = solve_coupled(
+        &mut normal,
+        &mut tang,
+        &case.gap,
+        case.load,
+        t.mu,
+        problem,
+        &case.options,
+        &TangentialOptions::default(),
+        &CoupledOptions::default(),
+    )
+    .map_err(|e| anyhow!("coupled normal-tangential problem (K != 0): {e}"))?;
+    // The tangential summary of the final tangential solution.
+    let exact_only = TangentialCase {
+        method: TangentialMethod::Exact,
+        ..*t
+    };
+    let mut summary = summary_of_exact(&exact_only, &c.tangential);
+    summary.outer_iterations = Some(c.outer_iterations);
+    summary.tangential_time_s = start.elapsed().as_secs_f64();
+    Ok((c.normal, summary, c.tangential))
+}
+
+fn summary_of_exact(t: &TangentialCase, sol: &TangentialSolution) -> TangentialSummary {
+    let rolling = matches!(t.task, TangentialTask::Rolling(_));
+    TangentialSummary {
+        tangential_method: t.method.name().into(),
+        tangential_problem: if rolling { "rolling" } else { "shift" }.into(),
+        mu: t.mu,
+        tangential_force_x: sol.force_x,
+        tangential_force_y: sol.force_y,
+        spin_moment: Some(sol.moment_z),
+        adhesion_elements: Some(sol.adhesion_elements),
+        slip_elements: Some(sol.slip_elements),
+        creepage_x: rolling.then_some(sol.creepages.xi),
+        creepage_y: rolling.then_some(sol.creepages.eta),
+        spin: rolling.then_some(sol.creepages.phi),
+        shift_x: (!rolling).then_some(sol.shift.0),
+        shift_y: (!rolling).then_some(sol.shift.1),
+        frictional_power: Some(sol.frictional_power),
+        tangential_iterations: Some(sol.iterations),
+        newton_iterations: Some(sol.newton_iterations),
+        outer_iterations: None,
+        tangential_time_s: 0.0,
+    }
+}
+
 /// FASTSIM on the Hertz ellipse (a, b) with the case grid's nx × ny elements.
 pub fn fastsim_on(
     case: &PreparedCase,
@@ -799,13 +862,23 @@ pub fn solve(case: &PreparedCase) -> Result<CaseOutcome> {
         Err(ContactError::NotConverged { last, .. }) => *last,
         Err(e) => return Err(anyhow!("{e}")),
     };
-    let solve_time_s = start.elapsed().as_secs_f64();
-    let (tangential_summary, tangential) = match &case.tangential {
+    let mut solve_time_s = start.elapsed().as_secs_f64();
+    let (solution, tangential_summary, tangential) = match &case.tangential {
+        Some(t)
+            if solution.converged
+                && t.method == TangentialMethod::Exact
+                && case.material.k != 0.0 =>
+        {
+            // Dissimilar materials: alternate normal and tangential solves.
+            let (n, s, e) = solve_coupled_case(case, t)?;
+            solve_time_s = start.elapsed().as_secs_f64();
+            (n, Some(s), Some(e))
+        }
         Some(t) if solution.converged => {
             let (s, e) = solve_tangential(case, t, &solution)?;
-            (Some(s), e)
+            (solution, Some(s), e)
         }
-        _ => (None, None),
+        _ => (solution, None, None),
     };
     let g = case.grid;
     let m = case.material;
@@ -964,6 +1037,11 @@ pub fn print_summary(s: &ContactSummary) {
                 "J (work of the shift)"
             };
             println!("  friction loss     {p:>14.6e} {unit}");
+        }
+        if let Some(o) = t.outer_iterations {
+            println!(
+                "  K != 0: {o} normal-tangential outer iterations (the normal results above include the coupling)"
+            );
         }
         if let Some(i) = t.tangential_iterations {
             println!(

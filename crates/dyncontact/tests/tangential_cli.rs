@@ -270,3 +270,37 @@ fn creep_curve_writes_three_methods() {
         );
     }
 }
+
+#[test]
+fn dissimilar_materials_run_the_outer_loop() {
+    // A rigid ball on a soft body (K = −0.3): the exact method alternates normal and
+    // tangential solves; the prescribed force is met and the outer count is reported.
+    let dir = tempfile::tempdir().unwrap();
+    let case = write_case(
+        dir.path(),
+        "k.toml",
+        r#"
+[body1]
+rigid = true
+[body2]
+E = 1e9
+nu = 0.2
+[gap]
+kind = "sphere"
+radius = 0.01
+[grid]
+n = 16
+[load]
+force = 50.0
+[friction]
+mu = 0.3
+[kinematics]
+problem = "shift"
+force_x = 5.0
+"#,
+    );
+    let v = json_of(&["contact", &case, "--json"]);
+    assert!(v["outer_iterations"].as_u64().unwrap() > 1, "{v}");
+    assert!((f(&v, "tangential_force_x") - 5.0).abs() < 1e-4);
+    assert!((f(&v, "normal_force") - 50.0).abs() < 1e-6);
+}
