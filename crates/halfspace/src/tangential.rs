@@ -657,6 +657,50 @@ impl TangentialSolver {
         Ok(self.solution(motion.delta_q, motion.creepages, motion.shift, its, 0, res))
     }
 
+    /// A transient rolling step (as [`Self::transient_step`]) with the total tangential forces
+    /// F_x, F_y [N] prescribed and the spin φ [1/m] given: Newton's method finds the creepages
+    /// ξ, η of the step (CONTACT's T = 2 with forces prescribed, e.g. the Cattaneo → Carter
+    /// transient of contact.md §4.4). `delta_q` must be positive.
+    #[allow(clippy::too_many_arguments)]
+    pub fn transient_step_forces(
+        &mut self,
+        pressure: &[f64],
+        mu: f64,
+        previous: (&[f64], &[f64]),
+        delta_q: f64,
+        forces: (f64, f64),
+        phi: f64,
+        options: &TangentialOptions,
+    ) -> Result<TangentialSolution, ContactError> {
+        options.validate()?;
+        let limit = self.set_bound(pressure, mu)?;
+        self.check_len("previous traction_x", previous.0.len())?;
+        self.check_len("previous traction_y", previous.1.len())?;
+        positive("delta_q", delta_q)?;
+        finite("spin", phi)?;
+        let target = self.check_force_target(forces.0, forces.1, limit)?;
+        self.ensure_shifted(delta_q);
+        self.prepare_coupling(Coupling::Shifted);
+        let spectra = self.shifted.as_ref().expect("just built").1.clone();
+        let (prev_x, prev_y) = (previous.0.to_vec(), previous.1.to_vec());
+        let (param, its, newton, res) = self.newton(target, limit, options, |s, p, opts| {
+            let c = Creepages {
+                xi: p[0],
+                eta: p[1],
+                phi,
+            };
+            s.set_rigid(delta_q, c, (0.0, 0.0));
+            s.subtract_convolution(&spectra, &prev_x, &prev_y);
+            s.solve_current(Operator::Direct, opts)
+        })?;
+        let c = Creepages {
+            xi: param[0],
+            eta: param[1],
+            phi,
+        };
+        Ok(self.solution(delta_q, c, (0.0, 0.0), its, newton, res))
+    }
+
     /// b ← b − (K p) for the kernel spectra (xx, xy, yy).
     fn subtract_convolution(&mut self, spectra: &[KernelSpectrum; 3], qx: &[f64], qy: &[f64]) {
         let [kxx, kxy, kyy] = spectra;
