@@ -51,6 +51,12 @@ fn closed_form_matches_the_published_numbers() {
         residual.abs() < 1e-12 * 0.5 * s.mass * 1.96,
         "residual {residual}"
     );
+    // Released at rest on the surface: (2/5)Kδ^{5/2} = m g δ gives δ = (5mg/(2K))^{2/3},
+    // the static approach (mg/K)^{2/3} times 2.5^{2/3}.
+    let rest = HertzImpact::new(s.mass, k, 0.0, 9.81);
+    let expected = (2.5 * s.mass * 9.81 / k).powf(2.0 / 3.0);
+    assert!(rel(rest.max_approach, expected).abs() < 1e-12);
+    assert!(rest.contact_duration.is_infinite());
 }
 
 /// The adaptive methods at rtol 1e-10: maximum approach, peak force and contact duration
