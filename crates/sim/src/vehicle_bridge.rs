@@ -48,8 +48,9 @@
 //!
 //! # Start
 //! Every wheel starts in static equilibrium on an undeformed rail: F_k = W_k =
-//! (m_w + m_b) g + P, z_w = δ_static − r(x_k0), z_b = z_w + m_b g/k_s; the bridge starts at
-//! rest and undeflected (wheels normally start off the span, x_k0 ≤ 0).
+//! (m_w + m_b) g + P, z_w = δ_static − r(x_k0), z_b = z_w + m_b g/k_s, moving with the rail
+//! under it (ż_w = ż_b = −c r'(x_k0)); the bridge starts at rest and undeflected (wheels
+//! normally start off the span, x_k0 ≤ 0).
 
 mod contact;
 pub mod irregularity;
@@ -581,7 +582,18 @@ impl Simulation {
             gravity_load,
             contact_load: contact_load.clone(),
         };
-        let v0 = vec![0.0; n];
+        // The wheel and body start moving with the rail under them: ż = −c r'(x_k0) keeps
+        // δ̇ = ż_w + c r' = 0 (r' by a central difference, h = 1e-6 m).
+        let mut v0 = vec![0.0; n];
+        for (k, w) in scenario.wheels.iter().enumerate() {
+            let h = 1e-6;
+            let irr = &scenario.irregularity;
+            let slope = (irr.height(w.position + h) - irr.height(w.position - h)) / (2.0 * h);
+            v0[wheel_dof[k]] = -scenario.speed * slope;
+            if let Some(ib) = body_dof[k] {
+                v0[ib] = -scenario.speed * slope;
+            }
+        }
         let stepper = StructuralStepper::new(scenario.method, &mut structure, 0.0, &q0, &v0)?;
         let nw = scenario.wheels.len();
         let ncols: Vec<usize> = laws.iter().map(|l| l.columns().len()).collect();
