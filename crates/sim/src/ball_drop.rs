@@ -2,8 +2,8 @@
 //! contact.md §4.10).
 //!
 //! # Model
-//! One degree of freedom: `z` [m] is the height of the ball's lowest point above the surface
-//! (upward positive), `v = z'` [m/s]. The approach is `δ = max(0, −z)` and
+//! One degree of freedom: `z` \[m\] is the height of the ball's lowest point above the surface
+//! (upward positive), `v = z'` \[m/s\]. The approach is `δ = max(0, −z)` and
 //!
 //! ```text
 //! m z'' = F(δ, δ') − m g,        F = max(0, F_el(δ) + c δ')  for δ > 0,  F = 0 otherwise,
@@ -12,7 +12,7 @@
 //! with the elastic law `F_el` either Hertz's closed form `K δ^{3/2}` (`K = (4/3)E*√R` for a
 //! sphere, the elliptic Hertz solution for an ellipsoid; Johnson 1985 §11.4, contact.md §4.1)
 //! or the boundary-element half-space solver at prescribed approach ([`ContactForce::bem`]),
-//! and optional linear surface damping `c` [N·s/m]. `1/E* = (1−ν₁²)/E₁ + (1−ν₂²)/E₂`
+//! and optional linear surface damping `c` \[N·s/m\]. `1/E* = (1−ν₁²)/E₁ + (1−ν₂²)/E₂`
 //! (a rigid ball has `1/E₁ = 0`).
 //!
 //! # Integrators
@@ -90,9 +90,9 @@ fn invalid(key: &'static str, value: f64, reason: &str) -> BallDropError {
 /// Geometry of the ball near its lowest point.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum BallShape {
-    /// A sphere of radius `radius` [m].
+    /// A sphere of radius `radius` \[m\].
     Sphere { radius: f64 },
-    /// A body with principal radii of curvature `radius_x`, `radius_y` [m] at its lowest
+    /// A body with principal radii of curvature `radius_x`, `radius_y` \[m\] at its lowest
     /// point (Hertz's elliptic contact).
     Ellipsoid { radius_x: f64, radius_y: f64 },
 }
@@ -109,21 +109,21 @@ pub enum ForceModel {
 /// The time integrator and its settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Integrator {
-    /// A method of [`integrate::ode`]. euler, rk4 and backward_euler take fixed steps `dt` [s];
-    /// dopri5, radau5, bdf and adams are adaptive with `rtol`, `atol` [m, m/s, J].
+    /// A method of [`integrate::ode`]. euler, rk4 and backward_euler take fixed steps `dt` \[s\];
+    /// dopri5, radau5, bdf and adams are adaptive with `rtol`, `atol` \[m, m/s, J\].
     Ode {
         method: Method,
         rtol: f64,
         atol: f64,
         dt: f64,
-        /// Contact-guard step `h_c` [s] (default: `T_c/50` from the Hertz contact time at the
+        /// Contact-guard step `h_c` \[s\] (default: `T_c/50` from the Hertz contact time at the
         /// first impact speed; for the fixed-step methods always `dt`).
         guard_step: Option<f64>,
-        /// Largest step of an adaptive method [s] (default unbounded).
+        /// Largest step of an adaptive method \[s\] (default unbounded).
         max_step: Option<f64>,
     },
-    /// A method of [`integrate::structural`] with the step `dt` [s] in contact and
-    /// `dt_flight` [s] in free flight.
+    /// A method of [`integrate::structural`] with the step `dt` \[s\] in contact and
+    /// `dt_flight` \[s\] in free flight.
     Structural {
         method: StructuralMethod,
         dt: f64,
@@ -138,13 +138,13 @@ pub struct IntegratorSettings {
     pub rtol: f64,
     /// Absolute tolerance of adaptive methods (default 1e-12).
     pub atol: f64,
-    /// Fixed step [s] (default 1e-6).
+    /// Fixed step \[s\] (default 1e-6).
     pub dt: f64,
-    /// Free-flight step of the structural methods [s] (default `dt`).
+    /// Free-flight step of the structural methods \[s\] (default `dt`).
     pub dt_flight: Option<f64>,
-    /// Contact-guard step of the first-order methods [s].
+    /// Contact-guard step of the first-order methods \[s\].
     pub guard_step: Option<f64>,
-    /// Largest step of adaptive methods [s].
+    /// Largest step of adaptive methods \[s\].
     pub max_step: Option<f64>,
     /// Structural method parameters (`alpha`, `rho_inf`, `beta`, `gamma`).
     pub parameters: Vec<(&'static str, f64)>,
@@ -255,7 +255,7 @@ impl Integrator {
 /// A ball-drop scenario (SI units).
 #[derive(Debug, Clone, PartialEq)]
 pub struct BallDrop {
-    /// Ball mass m [kg].
+    /// Ball mass m \[kg\].
     pub mass: f64,
     /// Ball geometry at its lowest point.
     pub shape: BallShape,
@@ -263,21 +263,21 @@ pub struct BallDrop {
     pub ball: Body,
     /// The half-space's material.
     pub surface: Body,
-    /// Gravitational acceleration g [m/s²] (default 9.81).
+    /// Gravitational acceleration g \[m/s²\] (default 9.81).
     pub gravity: f64,
-    /// Initial height h ≥ 0 of the lowest point above the surface [m].
+    /// Initial height h ≥ 0 of the lowest point above the surface \[m\].
     pub height: f64,
-    /// Initial velocity v₀ [m/s], upward positive.
+    /// Initial velocity v₀ \[m/s\], upward positive.
     pub velocity: f64,
-    /// Simulated time [s].
+    /// Simulated time \[s\].
     pub duration: f64,
     /// Elastic force law.
     pub model: ForceModel,
-    /// Linear surface damping c ≥ 0 [N·s/m].
+    /// Linear surface damping c ≥ 0 \[N·s/m\].
     pub damping: f64,
     /// Time integrator.
     pub integrator: Integrator,
-    /// Spacing of the recorded free-flight samples [s] (every step in contact is recorded);
+    /// Spacing of the recorded free-flight samples \[s\] (every step in contact is recorded);
     /// default `duration / 2000`.
     pub output_interval: Option<f64>,
 }
@@ -421,12 +421,12 @@ impl BallDrop {
     }
 
     /// Speed at the first impact, `√(v₀² + 2 g h)` for a ball moving down or at rest
-    /// (a ball thrown upward returns with the same speed) [m/s].
+    /// (a ball thrown upward returns with the same speed) \[m/s\].
     pub fn impact_speed(&self) -> f64 {
         (self.velocity * self.velocity + 2.0 * self.gravity * self.height).sqrt()
     }
 
-    /// The energy scale `E_ref` of `energy_drift` (module documentation) [J].
+    /// The energy scale `E_ref` of `energy_drift` (module documentation) \[J\].
     pub fn energy_scale(&self) -> f64 {
         let kinetic = 0.5 * self.mass * self.impact_speed().powi(2);
         let r = match self.shape {
@@ -520,7 +520,7 @@ impl BallDrop {
     }
 }
 
-/// Mass of a sphere of radius `r` [m] and density `rho` [kg/m³]: `(4/3)π r³ ρ`.
+/// Mass of a sphere of radius `r` \[m\] and density `rho` \[kg/m³\]: `(4/3)π r³ ρ`.
 pub fn sphere_mass(r: f64, rho: f64) -> f64 {
     4.0 / 3.0 * std::f64::consts::PI * r.powi(3) * rho
 }
@@ -548,15 +548,15 @@ fn max_step_count(key: &'static str, duration: f64, dt: f64) -> Result<(), BallD
 /// Hertz impact closed form (dynamics.md §1.4, contact.md §4.10; Johnson 1985 §11.4).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HertzImpact {
-    /// Impact speed v [m/s].
+    /// Impact speed v \[m/s\].
     pub impact_speed: f64,
-    /// Maximum approach δ* [m] from the energy balance
+    /// Maximum approach δ* \[m\] from the energy balance
     /// `(2/5) K δ*^{5/2} = ½ m v² + m g δ*` (g = 0: `δ* = (15 m v²/(16 E*√R))^{2/5}`).
     pub max_approach: f64,
-    /// Peak force `F* = K δ*^{3/2}` [N].
+    /// Peak force `F* = K δ*^{3/2}` \[N\].
     pub peak_force: f64,
     /// Contact duration without gravity, `t_c = (4/5) B(2/5, ½) δ₀*/v = 2.9432752 δ₀*/v`
-    /// with the gravity-free δ₀* [s]. (From `t_c = 2 ∫₀^{δ*} dδ / √(v² − (4K/5m) δ^{5/2})`;
+    /// with the gravity-free δ₀* \[s\]. (From `t_c = 2 ∫₀^{δ*} dδ / √(v² − (4K/5m) δ^{5/2})`;
     /// gravity lengthens it by a relative O(m g/F*).)
     pub contact_duration: f64,
 }
@@ -565,7 +565,7 @@ pub struct HertzImpact {
 pub const CONTACT_TIME_FACTOR: f64 = 2.943_275_184_324_705;
 
 impl HertzImpact {
-    /// The impact of mass `m` [kg] at speed `v` [m/s] on `F = K δ^{3/2}` under gravity `g`.
+    /// The impact of mass `m` \[kg\] at speed `v` \[m/s\] on `F = K δ^{3/2}` under gravity `g`.
     pub fn new(m: f64, k: f64, v: f64, g: f64) -> Self {
         let free = (1.25 * m * v * v / k).powf(0.4);
         // f(δ) = (2/5)Kδ^{5/2} − m g δ − ½ m v² is convex for δ > 0 with f(0) ≤ 0: one
@@ -604,36 +604,36 @@ impl HertzImpact {
 /// One recorded point of the time series.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sample {
-    /// Time [s].
+    /// Time \[s\].
     pub t: f64,
-    /// Height of the lowest point [m].
+    /// Height of the lowest point \[m\].
     pub z: f64,
-    /// Velocity [m/s].
+    /// Velocity \[m/s\].
     pub v: f64,
-    /// Acceleration `F/m − g` [m/s²].
+    /// Acceleration `F/m − g` \[m/s²\].
     pub a: f64,
-    /// Approach δ = max(0, −z) [m].
+    /// Approach δ = max(0, −z) \[m\].
     pub approach: f64,
-    /// Contact force F [N].
+    /// Contact force F \[N\].
     pub force: f64,
-    /// Total energy `½ m v² + m g z + W(δ) + D` [J].
+    /// Total energy `½ m v² + m g z + W(δ) + D` \[J\].
     pub energy: f64,
 }
 
 /// One impact.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Impact {
-    /// Contact start [s].
+    /// Contact start \[s\].
     pub time: f64,
-    /// Speed at contact start [m/s] (positive).
+    /// Speed at contact start \[m/s\] (positive).
     pub impact_velocity: f64,
-    /// Largest approach [m], located inside the step by the dense output.
+    /// Largest approach \[m\], located inside the step by the dense output.
     pub max_approach: f64,
-    /// Largest contact force [N], located inside the step by the dense output.
+    /// Largest contact force \[N\], located inside the step by the dense output.
     pub peak_force: f64,
-    /// Contact end − start [s] (`None` if the run ended in contact).
+    /// Contact end − start \[s\] (`None` if the run ended in contact).
     pub contact_duration: Option<f64>,
-    /// Upward speed at contact end [m/s].
+    /// Upward speed at contact end \[m/s\].
     pub rebound_velocity: Option<f64>,
     /// `rebound_velocity / impact_velocity`.
     pub restitution: Option<f64>,
@@ -686,9 +686,9 @@ pub struct BallDropResult {
     pub impacts: Vec<Impact>,
     /// Mean restitution over the completed impacts.
     pub restitution: Option<f64>,
-    /// Initial energy E₀ [J] (potential energy measured from the surface).
+    /// Initial energy E₀ \[J\] (potential energy measured from the surface).
     pub initial_energy: f64,
-    /// `E_ref` [J].
+    /// `E_ref` \[J\].
     pub energy_scale: f64,
     /// `(E(t_end) − E₀)/E_ref`.
     pub energy_drift: f64,
@@ -696,13 +696,13 @@ pub struct BallDropResult {
     pub energy_drift_max: Option<f64>,
     /// Integrator counters.
     pub stats: RunStats,
-    /// Wall time of the integration [s].
+    /// Wall time of the integration \[s\].
     pub wall_time_s: f64,
     /// Hertz closed form for the first impact.
     pub reference: HertzImpact,
-    /// Hertz constant K of `F = K δ^{3/2}` [N/m^{3/2}].
+    /// Hertz constant K of `F = K δ^{3/2}` \[N/m^{3/2}\].
     pub hertz_constant: f64,
-    /// Time reached [s].
+    /// Time reached \[s\].
     pub final_time: f64,
 }
 
@@ -715,7 +715,7 @@ struct RunOutput {
     stats: RunStats,
 }
 
-/// Illinois root finder (Dowell & Jarratt 1971) on `[a, b]` with `f(a) f(b) ≤ 0`, to a
+/// Illinois root finder (Dowell & Jarratt 1971) on `\[a, b\]` with `f(a) f(b) ≤ 0`, to a
 /// bracket of `4ε max(1, |t|)`.
 fn find_root(
     mut f: impl FnMut(f64) -> f64,

@@ -5,7 +5,7 @@ use halfspace::{GapShape, Hertz, Material, NormalLoad, NormalSolver, SolverOptio
 
 use super::{BallDropError, BallShape};
 
-/// The Hertz constant `K` of `F = K δ^{3/2}` [N/m^{3/2}] for the ball's gap on a flat
+/// The Hertz constant `K` of `F = K δ^{3/2}` \[N/m^{3/2}\] for the ball's gap on a flat
 /// surface (dynamics.md §1.4, contact.md §4.1).
 ///
 /// * sphere: `K = (4/3) E* √R` (Johnson 1985 §11.4);
@@ -29,11 +29,11 @@ pub fn hertz_constant(shape: &BallShape, material: &Material) -> Result<f64, Bal
 /// Result of one elastic force evaluation.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ElasticForce {
-    /// Elastic contact force `F_el(δ)` [N].
+    /// Elastic contact force `F_el(δ)` \[N\].
     pub force: f64,
-    /// Contact stiffness `dF_el/dδ` [N/m] (only when requested from the BEM model).
+    /// Contact stiffness `dF_el/dδ` \[N/m\] (only when requested from the BEM model).
     pub stiffness: Option<f64>,
-    /// Stored elastic energy `W(δ) = ∫₀^δ F_el dδ'` [J].
+    /// Stored elastic energy `W(δ) = ∫₀^δ F_el dδ'` \[J\].
     pub energy: f64,
 }
 
@@ -135,7 +135,7 @@ impl ContactForce {
         })
     }
 
-    /// Linear damping coefficient `c` [N·s/m].
+    /// Linear damping coefficient `c` \[N·s/m\].
     pub fn damping(&self) -> f64 {
         self.damping
     }
@@ -159,7 +159,7 @@ impl ContactForce {
         }
     }
 
-    /// Elastic force, energy and (if `stiffness`) the tangent `dF_el/dδ` at approach δ [m].
+    /// Elastic force, energy and (if `stiffness`) the tangent `dF_el/dδ` at approach δ \[m\].
     ///
     /// BEM: the stored energy is Clapeyron's `W = ½ ΔA Σ pᵢ uᵢ` of the discrete solution,
     /// which equals `∫ F dδ` exactly for the discrete frictionless problem (by the envelope
