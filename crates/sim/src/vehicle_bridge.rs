@@ -332,6 +332,8 @@ struct Work {
     modal_load: Vec<Vec<f64>>,
     g_hat: Vec<Vec<f64>>,
     v: Vec<Vec<f64>>,
+    g_act: Vec<Vec<f64>>,
+    v_act: Vec<Vec<f64>>,
     outputs: Vec<ContactOutput>,
     delta: Vec<f64>,
     prev_force: Vec<f64>,
@@ -611,6 +613,8 @@ impl Simulation {
             modal_load: vec![vec![0.0; m]; nw],
             g_hat: vec![vec![0.0; n]; nw],
             v: vec![vec![0.0; n]; nw],
+            g_act: vec![vec![0.0; n]; nw],
+            v_act: vec![vec![0.0; n]; nw],
             outputs: vec![ContactOutput::default(); nw],
             delta: vec![0.0; nw],
             prev_force: vec![0.0; nw],
@@ -1091,14 +1095,18 @@ impl Simulation {
                         }
                     }
                     let ka = w.active.len();
-                    let g_hat: Vec<&[f64]> = w.active.iter().map(|&k| &w.g_hat[k][..]).collect();
-                    let v: Vec<&[f64]> = w.active.iter().map(|&k| &w.v[k][..]).collect();
+                    // The active wheels' vectors, copied into preallocated rows (no allocation).
+                    for (a, &k) in w.active.iter().enumerate() {
+                        w.g_act[a].copy_from_slice(&w.g_hat[k]);
+                        w.v_act[a].copy_from_slice(&w.v[k]);
+                    }
+                    let (g_hat, v) = (&w.g_act[..ka], &w.v_act[..ka]);
                     let ok = if solver == CouplingSolver::QuasiNewton {
                         contact_update(
                             &self.a_matrix,
                             s,
-                            &g_hat,
-                            &v,
+                            g_hat,
+                            v,
                             &w.compliance[..ka],
                             &w.delta_tilde[..ka],
                             &mut w.res,
@@ -1109,8 +1117,8 @@ impl Simulation {
                         dense_contact_update(
                             &self.a_matrix,
                             s,
-                            &g_hat,
-                            &v,
+                            g_hat,
+                            v,
                             &w.compliance[..ka],
                             &w.delta_tilde[..ka],
                             &mut w.res,

@@ -183,8 +183,8 @@ impl CapacitanceWork {
 pub fn contact_update(
     a: &BlockDiagonal,
     s: f64,
-    g_hat: &[&[f64]],
-    v: &[&[f64]],
+    g_hat: &[impl AsRef<[f64]>],
+    v: &[impl AsRef<[f64]>],
     compliance: &[f64],
     delta_tilde: &[f64],
     x: &mut [f64],
@@ -200,24 +200,24 @@ pub fn contact_update(
         *work = CapacitanceWork::new(x.len(), k);
     }
     for c in 0..k {
-        work.ainv_g[c].copy_from_slice(g_hat[c]);
+        work.ainv_g[c].copy_from_slice(g_hat[c].as_ref());
         a.solve_in_place(&mut work.ainv_g[c]);
     }
     if k == 1 {
         // Sherman–Morrison: ΔF = (vᵀy + δ̃)/(1/k_c + s vᵀA⁻¹ĝ) = k_c(vᵀy + δ̃)/(1 + λ).
-        let den = compliance[0] + s * dot(v[0], &work.ainv_g[0]);
+        let den = compliance[0] + s * dot(v[0].as_ref(), &work.ainv_g[0]);
         if den == 0.0 || !den.is_finite() {
             return false;
         }
-        df[0] = (dot(v[0], x) + delta_tilde[0]) / den;
+        df[0] = (dot(v[0].as_ref(), x) + delta_tilde[0]) / den;
     } else {
         let cap = &mut work.cap[..k * k];
         for r in 0..k {
             for c in 0..k {
                 let diag = if r == c { compliance[r] } else { 0.0 };
-                cap[r * k + c] = diag + s * dot(v[r], &work.ainv_g[c]);
+                cap[r * k + c] = diag + s * dot(v[r].as_ref(), &work.ainv_g[c]);
             }
-            df[r] = dot(v[r], x) + delta_tilde[r];
+            df[r] = dot(v[r].as_ref(), x) + delta_tilde[r];
         }
         if !dense_solve(cap, &mut df[..k]) {
             return false;
@@ -243,8 +243,8 @@ pub fn contact_update(
 pub fn dense_contact_update(
     a: &BlockDiagonal,
     s: f64,
-    g_hat: &[&[f64]],
-    v: &[&[f64]],
+    g_hat: &[impl AsRef<[f64]>],
+    v: &[impl AsRef<[f64]>],
     compliance: &[f64],
     delta_tilde: &[f64],
     x: &mut [f64],
@@ -261,12 +261,12 @@ pub fn dense_contact_update(
     for i in 0..n {
         mat[i * m..i * m + n].copy_from_slice(&dense_a[i * n..(i + 1) * n]);
         for c in 0..k {
-            mat[i * m + n + c] = s * g_hat[c][i];
+            mat[i * m + n + c] = s * g_hat[c].as_ref()[i];
         }
         rhs[i] = x[i];
     }
     for c in 0..k {
-        mat[(n + c) * m..(n + c) * m + n].copy_from_slice(v[c]);
+        mat[(n + c) * m..(n + c) * m + n].copy_from_slice(v[c].as_ref());
         mat[(n + c) * m + n + c] = -compliance[c];
         rhs[n + c] = -delta_tilde[c];
     }
