@@ -231,7 +231,8 @@ fn wheel_jumps_over_a_dip_with_every_model() {
 /// β = ¼ without damping, λ = k_c c_Δt = k_c β Δt²/m_w, so Picard converges iff
 /// Δt < Δt* = √(m_w/(β k_c)). The step where Picard first fails (located by bisection on Δt,
 /// Hertz contact at the static load with a 1 µm corrugation) agrees with Δt* within 10 %; the
-/// quasi-Newton (Sherman–Morrison) iteration converges at 3 Δt*.
+/// quasi-Newton (Sherman–Morrison) iteration converges at 3 Δt*, and Picard with one step
+/// halving allowed runs at 1.3 Δt* by halving (each failure counted in `failed_steps`).
 #[test]
 fn picard_threshold_matches_lambda_one() {
     let m_w = 900.0;
@@ -240,7 +241,7 @@ fn picard_threshold_matches_lambda_one() {
     let delta = (load / hertz.coefficient).powf(2.0 / 3.0);
     let k_c = 1.5 * load / delta;
     let dt_star = (m_w / (0.25 * k_c)).sqrt();
-    let converges = |dt: f64, solver: CouplingSolver| {
+    let simulation = |dt: f64, solver: CouplingSolver, max_halvings: usize| {
         let wheel = WheelSpec {
             position: -200.0,
             wheel_mass: m_w,
@@ -260,11 +261,13 @@ fn picard_threshold_matches_lambda_one() {
             solver,
             tol: 1e-9,
             max_iter: 2000,
-            max_halvings: 0,
+            max_halvings,
         };
         let mut sim = Simulation::new(sc).unwrap();
-        sim.run(|_| {}).is_ok()
+        let ok = sim.run(|_| {}).is_ok();
+        (ok, sim.stats())
     };
+    let converges = |dt: f64, solver: CouplingSolver| simulation(dt, solver, 0).0;
     assert!(converges(3.0 * dt_star, CouplingSolver::QuasiNewton));
     assert!(converges(0.8 * dt_star, CouplingSolver::Picard));
     assert!(!converges(1.3 * dt_star, CouplingSolver::Picard));
@@ -280,4 +283,13 @@ fn picard_threshold_matches_lambda_one() {
     let ratio = 0.5 * (lo + hi) / dt_star;
     println!("Δt* = {dt_star:.4e} s (k_c = {k_c:.3e} N/m); Picard fails from {ratio:.4} Δt*");
     assert!((ratio - 1.0).abs() < 0.1, "{ratio}");
+    // Step reduction: at 1.3 Δt* every step fails once and succeeds as two halves
+    // (0.65 Δt* < Δt*); the failures are reported, not hidden.
+    let (ok, stats) = simulation(1.3 * dt_star, CouplingSolver::Picard, 1);
+    println!(
+        "Picard at 1.3 Δt* with one halving: {} failed steps, {} accepted steps",
+        stats.failed_steps, stats.steps
+    );
+    assert!(ok);
+    assert!(stats.failed_steps >= 25 && stats.steps >= 2 * stats.failed_steps);
 }
