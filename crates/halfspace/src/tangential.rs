@@ -35,8 +35,9 @@
 //! on a convex problem and converges; the steady operator A − A_v is far from symmetric
 //! (nearly a discrete derivative), so there every update is under-relaxed (ω ≤ 0.5, halved
 //! further by a factor 0.6 whenever a sweep changes p more than the previous one). S is kept exact
-//! by adding the changed element's column of C (dense, O(n) per element) and is recomputed
-//! by FFT convolution before each solve. Sweeps run row by row from the leading edge
+//! by adding the changed element's column of C (dense, O(n) per element) in the rows not
+//! yet visited in the sweep, and is recomputed by FFT convolution before each sweep (which
+//! brings the visited rows up to date: the iterates are those of full Gauss–Seidel). Sweeps run row by row from the leading edge
 //! (largest x) to the trailing edge, the SteadyGS order that resolves the dominant upstream
 //! coupling of steady rolling in one sweep. Stopping rule (CONTACT's, §3.7):
 //! ‖Δp‖_rms ≤ tol·‖p‖_rms over one sweep.
@@ -896,6 +897,17 @@ impl TangentialSolver {
         let mut change = f64::INFINITY;
         let mut previous_change = f64::INFINITY;
         for sweep in 1..=options.max_iter {
+            // Rows are swept from iy0 up; a traction change updates S only in its own and the
+            // later rows (the ones still to be visited in this sweep). The earlier rows are
+            // brought up to date here by FFT convolution, so every element sees exactly the
+            // S of full Gauss–Seidel at half the dense work.
+            if sweep > 1 && iy1 > iy0 {
+                self.refresh_shift(op);
+            }
+            let kernels = match op {
+                Operator::Direct => &self.direct,
+                Operator::Steady => self.steady.as_ref().expect("built by the caller"),
+            };
             let (mut dp2, mut p2) = (0.0, 0.0);
             for iy in iy0..=iy1 {
                 for ix in (ix0..=ix1).rev() {
@@ -932,7 +944,7 @@ impl TangentialSolver {
                         &mut self.sy,
                         ix0,
                         ix1,
-                        iy0,
+                        iy,
                         iy1,
                     );
                 }
