@@ -9,6 +9,12 @@
 //! zero-padded FFT convolutions ([`convolution`]); the solver is the bound-constrained
 //! conjugate-gradient method NormCG with an FFT preconditioner ([`normcg`]).
 //!
+//! The tangential problem with Coulomb friction — shift (Cattaneo–Mindlin), steady and
+//! transient rolling — is solved on the same grid by [`TangentialSolver`] ([`tangential`];
+//! ConvexGS/SteadyGS, contact.md §3.5), with the normal–tangential coupling of dissimilar
+//! materials in [`coupled`]; the simplified theories are Kalker's linear theory
+//! ([`linear_theory`]) and FASTSIM ([`fastsim`]). User documentation: docs/tangential.md.
+//!
 //! Units are SI: metres, newtons, pascals. Pressure is positive in compression; the
 //! approach is positive when the undeformed bodies overlap. Grids store element (ix, iy) at
 //! index `iy * nx + ix`.

@@ -454,25 +454,23 @@ impl TangentialSolver {
     fn prepare_coupling(&mut self, kind: Coupling) {
         self.cnx.fill(0.0);
         self.cny.fill(0.0);
-        if self.coupling.is_none() {
+        let Some(direct) = &self.coupling else {
             return;
-        }
-        let (spectra, subtract) = match kind {
-            Coupling::Direct => (self.coupling.clone().expect("checked"), None),
-            Coupling::Steady => (self.coupling_steady.clone().expect("built"), None),
-            Coupling::Shifted => (
-                self.coupling.clone().expect("checked"),
-                Some(self.coupling_shifted.as_ref().expect("built").1.clone()),
-            ),
         };
-        self.conv.apply(&spectra[0], &self.pn, &mut self.cnx);
-        self.conv.apply(&spectra[1], &self.pn, &mut self.cny);
-        if let Some([sx, sy]) = subtract {
-            let prev = self.pn_previous.take().unwrap_or_else(|| self.pn.clone());
-            self.conv.apply(&sx, &prev, &mut self.tmp);
+        let main = match kind {
+            Coupling::Direct | Coupling::Shifted => direct,
+            Coupling::Steady => self.coupling_steady.as_ref().expect("built"),
+        };
+        self.conv.apply(&main[0], &self.pn, &mut self.cnx);
+        self.conv.apply(&main[1], &self.pn, &mut self.cny);
+        if kind == Coupling::Shifted {
+            let [sx, sy] = &self.coupling_shifted.as_ref().expect("built").1;
+            let prev = self.pn_previous.as_deref().unwrap_or(&self.pn);
+            self.conv.apply(sx, prev, &mut self.tmp);
             sub(&mut self.cnx, &self.tmp);
-            self.conv.apply(&sy, &prev, &mut self.tmp);
+            self.conv.apply(sy, prev, &mut self.tmp);
             sub(&mut self.cny, &self.tmp);
+            self.pn_previous = None;
         }
     }
 
@@ -633,22 +631,17 @@ impl TangentialSolver {
             // A shift step: the pressure's own tangential displacement changes by
             // A_tn (p_n − p_n').
             self.prepare_coupling(Coupling::Direct);
-            if let (Some(prev), Some([kx, ky])) = (self.pn_previous.take(), self.coupling.clone()) {
-                self.conv.apply(&kx, &prev, &mut self.tmp);
+            if let (Some(prev), Some([kx, ky])) = (&self.pn_previous, &self.coupling) {
+                self.conv.apply(kx, prev, &mut self.tmp);
                 sub(&mut self.cnx, &self.tmp);
-                self.conv.apply(&ky, &prev, &mut self.tmp);
+                self.conv.apply(ky, prev, &mut self.tmp);
                 sub(&mut self.cny, &self.tmp);
             }
+            self.pn_previous = None;
         }
         self.set_rigid(motion.delta_q, motion.creepages, motion.shift);
         // b −= A_v p'  (A_v = A when δq = 0).
-        let spectra: [KernelSpectrum; 3] = if motion.delta_q == 0.0 {
-            self.direct.spectra.clone()
-        } else {
-            self.ensure_shifted(motion.delta_q);
-            self.shifted.as_ref().expect("just built").1.clone()
-        };
-        self.subtract_convolution(&spectra, previous.0, previous.1);
+        self.subtract_previous(motion.delta_q > 0.0, previous.0, previous.1);
         if !self.has_previous || !options.warm_start {
             self.px.copy_from_slice(previous.0);
             self.py.copy_from_slice(previous.1);
@@ -682,7 +675,6 @@ impl TangentialSolver {
         let target = self.check_force_target(forces.0, forces.1, limit)?;
         self.ensure_shifted(delta_q);
         self.prepare_coupling(Coupling::Shifted);
-        let spectra = self.shifted.as_ref().expect("just built").1.clone();
         let (prev_x, prev_y) = (previous.0.to_vec(), previous.1.to_vec());
         let (param, its, newton, res) = self.newton(target, limit, options, |s, p, opts| {
             let c = Creepages {
@@ -691,7 +683,7 @@ impl TangentialSolver {
                 phi,
             };
             s.set_rigid(delta_q, c, (0.0, 0.0));
-            s.subtract_convolution(&spectra, &prev_x, &prev_y);
+            s.subtract_previous(true, &prev_x, &prev_y);
             s.solve_current(Operator::Direct, opts)
         })?;
         let c = Creepages {
@@ -703,8 +695,12 @@ impl TangentialSolver {
     }
 
     /// b ← b − (K p) for the kernel spectra (xx, xy, yy).
-    fn subtract_convolution(&mut self, spectra: &[KernelSpectrum; 3], qx: &[f64], qy: &[f64]) {
-        let [kxx, kxy, kyy] = spectra;
+    fn subtract_previous(&mut self, shifted: bool, qx: &[f64], qy: &[f64]) {
+        let [kxx, kxy, kyy] = if shifted {
+            &self.shifted.as_ref().expect("built by the caller").1
+        } else {
+            &self.direct.spectra
+        };
         self.conv.apply(kxx, qx, &mut self.tmp);
         sub(&mut self.bx, &self.tmp);
         self.conv.apply(kxy, qy, &mut self.tmp);
