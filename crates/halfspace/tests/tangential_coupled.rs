@@ -175,3 +175,62 @@ fn identical_materials_need_one_pass() {
     .unwrap();
     assert!(u.iter().all(|&v| v == 0.0));
 }
+
+#[test]
+fn transient_steps_with_coupling_reach_steady_rolling() {
+    // K ≠ 0 with a fixed pressure: transient steps (coupling A_xn p_n − A_v,xn p_n') started
+    // from rest must settle on the steady-rolling solution ((A_xn − A_v,xn) p_n); the traction
+    // memory leaves the patch after about one patch length (16 steps here), 80 steps leave a
+    // residual transient far below the 1e-4 μF_n tolerance.
+    let (grid, m, gap) = ball_on_soft(16);
+    let n = NormalSolver::new(grid, m)
+        .unwrap()
+        .solve(&gap, NormalLoad::Force(50.0), &SolverOptions::default())
+        .unwrap();
+    let mu = 0.3;
+    let c = Creepages {
+        xi: 2e-3,
+        eta: 0.0,
+        phi: 0.0,
+    };
+    let mut ts = TangentialSolver::new(grid, m).unwrap();
+    let steady = ts
+        .steady_rolling(
+            &n.pressure,
+            mu,
+            RollingLoad::Creepages(c),
+            &TangentialOptions::default(),
+        )
+        .unwrap();
+    ts.reset();
+    let (mut px, mut py) = (vec![0.0; grid.len()], vec![0.0; grid.len()]);
+    let motion = StepMotion {
+        delta_q: grid.dx,
+        creepages: c,
+        shift: (0.0, 0.0),
+    };
+    let mut last = None;
+    for _ in 0..80 {
+        let s = ts
+            .transient_step(
+                &n.pressure,
+                mu,
+                (&px, &py),
+                motion,
+                &TangentialOptions::default(),
+            )
+            .unwrap();
+        px = s.traction_x.clone();
+        py = s.traction_y.clone();
+        last = Some(s);
+    }
+    let last = last.unwrap();
+    let lim = mu * n.normal_force;
+    println!(
+        "steady {} transient {}",
+        steady.force_x / lim,
+        last.force_x / lim
+    );
+    assert!((last.force_x - steady.force_x).abs() < 1e-4 * lim);
+    assert!((last.force_y - steady.force_y).abs() < 1e-4 * lim);
+}
