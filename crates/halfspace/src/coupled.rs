@@ -13,7 +13,7 @@ use crate::error::{ContactError, positive};
 use crate::normcg::{NormalLoad, NormalSolver, SolverOptions};
 use crate::solution::NormalSolution;
 use crate::tangential::{
-    RollingLoad, ShiftLoad, TangentialOptions, TangentialSolution, TangentialSolver,
+    RollingLoad, ShiftLoad, StepMotion, TangentialOptions, TangentialSolution, TangentialSolver,
 };
 
 /// The tangential problem of a coupled solve.
@@ -105,6 +105,86 @@ pub fn solve_coupled(
                 tangential.steady_rolling(&ns.pressure, mu, l, tangential_options)?
             }
         };
+        let (dn, nn) = match &prev_pn {
+            Some(p) => rms_change(&ns.pressure, p),
+            None => (f64::INFINITY, 1.0),
+        };
+        let (dt, nt) = match &prev_pt {
+            Some((x, y)) => {
+                let (a, b) = rms_change(&ts.traction_x, x);
+                let (c, d) = rms_change(&ts.traction_y, y);
+                (a.hypot(c), b.hypot(d))
+            }
+            None => (f64::INFINITY, 1.0),
+        };
+        change = (dn / nn.max(f64::MIN_POSITIVE)).max(if nt > 0.0 { dt / nt } else { 0.0 });
+        if decoupled || change <= options.tol {
+            return Ok(CoupledSolution {
+                normal: ns,
+                tangential: ts,
+                outer_iterations: outer,
+                effective_gap: effective,
+            });
+        }
+        tangential.normal_displacement(&ts.traction_x, &ts.traction_y, &mut un)?;
+        for ((e, h), u) in effective.iter_mut().zip(gap).zip(&un) {
+            *e = h + u;
+        }
+        prev_pn = Some(ns.pressure);
+        prev_pt = Some((ts.traction_x, ts.traction_y));
+    }
+    Err(ContactError::CoupledNotConverged {
+        iterations: options.max_outer,
+        residual: change,
+    })
+}
+
+/// One coupled transient step (K ≠ 0): the outer loop of [`solve_coupled`] around
+/// [`TangentialSolver::transient_step`] with the previous step's tractions and pressure
+/// (`previous_traction`, `previous_pressure`; zeros for the first step). With
+/// `motion.delta_q = 0` this is a quasi-static loading stage, as in CONTACT's Spence example
+/// (a sequence of normal loads linked by the previous tractions).
+#[allow(clippy::too_many_arguments)]
+pub fn solve_coupled_step(
+    normal: &mut NormalSolver,
+    tangential: &mut TangentialSolver,
+    gap: &[f64],
+    load: NormalLoad,
+    mu: f64,
+    previous_traction: (&[f64], &[f64]),
+    previous_pressure: &[f64],
+    motion: StepMotion,
+    normal_options: &SolverOptions,
+    tangential_options: &TangentialOptions,
+    options: &CoupledOptions,
+) -> Result<CoupledSolution, ContactError> {
+    positive("coupled tol", options.tol)?;
+    if options.max_outer == 0 {
+        return Err(ContactError::InvalidParameter {
+            name: "max_outer",
+            value: 0.0,
+            reason: "must be at least 1",
+        });
+    }
+    let n = gap.len();
+    let decoupled = normal.material().k == 0.0;
+    // Start from the previous tractions' normal displacement.
+    let mut un = vec![0.0; n];
+    tangential.normal_displacement(previous_traction.0, previous_traction.1, &mut un)?;
+    let mut effective: Vec<f64> = gap.iter().zip(&un).map(|(h, u)| h + u).collect();
+    let mut prev_pn: Option<Vec<f64>> = None;
+    let mut prev_pt: Option<(Vec<f64>, Vec<f64>)> = None;
+    let mut change = f64::INFINITY;
+    for outer in 1..=options.max_outer {
+        let ns = normal.solve(&effective, load, normal_options)?;
+        tangential.set_previous_pressure(previous_pressure)?;
+        let ts = tangential.transient_step(
+            &ns.pressure,
+            mu,
+            previous_traction,
+            motion,
+            tangential_options,
+        )?;
         let (dn, nn) = match &prev_pn {
             Some(p) => rms_change(&ns.pressure, p),
             None => (f64::INFINITY, 1.0),

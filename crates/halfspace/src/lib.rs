@@ -46,7 +46,9 @@ pub mod normcg;
 pub mod solution;
 pub mod tangential;
 
-pub use coupled::{CoupledOptions, CoupledProblem, CoupledSolution, solve_coupled};
+pub use coupled::{
+    CoupledOptions, CoupledProblem, CoupledSolution, solve_coupled, solve_coupled_step,
+};
 pub use error::ContactError;
 pub use fastsim::{FastsimInput, FastsimSolution, fastsim};
 pub use gap::{AUTO_GRID_ELEMENTS, AUTO_GRID_MARGIN, GapShape, auto_grid};
