@@ -218,9 +218,13 @@ impl FftConvolution {
                     let j1 = (j0 + TILE).min(ny);
                     for c in 0..count {
                         let k = first + c;
-                        let col = &mut cols[c * my..(c + 1) * my];
-                        for j in j0..j1 {
-                            col[j] = row_spectra[j * kx + k];
+                        let col = &mut cols[c * my + j0..c * my + j1];
+                        // Strided read without per-element bounds checks.
+                        for (v, s) in col
+                            .iter_mut()
+                            .zip(row_spectra[j0 * kx + k..].iter().step_by(kx))
+                        {
+                            *v = *s;
                         }
                     }
                 }
@@ -258,9 +262,12 @@ impl FftConvolution {
                     let k1 = (k0 + TILE).min(kx);
                     for r in 0..count {
                         let j = first + r;
-                        let spec = &mut specs[r * kx..(r + 1) * kx];
-                        for k in k0..k1 {
-                            spec[k] = columns[k * my + j];
+                        let spec = &mut specs[r * kx + k0..r * kx + k1];
+                        for (v, s) in spec
+                            .iter_mut()
+                            .zip(columns[k0 * my + j..].iter().step_by(my))
+                        {
+                            *v = *s;
                         }
                     }
                 }

@@ -59,7 +59,9 @@ pub struct SolverOptions {
     pub max_iter: usize,
     /// Compute dF_n/dδ after convergence (default true).
     pub sensitivity: bool,
-    /// Relative residual tolerance of the sensitivity solve (default 1e-10).
+    /// Relative residual tolerance of the sensitivity solve (default 1e-6: dF_n/dδ is a
+    /// tangent for Newton-type iterations, where ~1e-6 is far below what matters; CONTACT's
+    /// own sensitivities are accurate to about 1 %).
     pub sensitivity_tol: f64,
     /// Start from the previous solution of this solver when there is one (default true).
     pub warm_start: bool,
@@ -71,7 +73,7 @@ impl Default for SolverOptions {
             tol: 1e-8,
             max_iter: 200,
             sensitivity: true,
-            sensitivity_tol: 1e-10,
+            sensitivity_tol: 1e-6,
             warm_start: true,
         }
     }
@@ -120,6 +122,17 @@ impl Workspace {
     }
 }
 
+/// State of the workspace between solves.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum WarmStart {
+    /// Nothing usable: start from zero (or the force guess).
+    Cold,
+    /// `work.p` holds a starting pressure; `work.u` is stale.
+    Pressure,
+    /// `work.p` is the last solution and `work.u = A p` exactly: no convolution needed to start.
+    Solution,
+}
+
 /// Solver of the normal contact problem on one grid and material pair.
 ///
 /// Owns the FFT plans, the spectra of A_nn and of the preconditioner (computed once), and
@@ -133,7 +146,8 @@ pub struct NormalSolver {
     influence: KernelSpectrum,
     preconditioner: KernelSpectrum,
     work: Workspace,
-    previous: Option<Vec<f64>>,
+    /// What the workspace holds for a warm start.
+    warm: WarmStart,
     previous_sensitivity: Option<Vec<f64>>,
     convolutions: usize,
 }
@@ -155,7 +169,7 @@ impl NormalSolver {
             influence,
             preconditioner,
             work: Workspace::new(grid.len()),
-            previous: None,
+            warm: WarmStart::Cold,
             previous_sensitivity: None,
             convolutions: 0,
         })
@@ -178,14 +192,17 @@ impl NormalSolver {
 
     /// Forget the previous solution (the next solve starts cold).
     pub fn reset(&mut self) {
-        self.previous = None;
+        self.warm = WarmStart::Cold;
         self.previous_sensitivity = None;
     }
 
     /// Use `pressure` as the starting iterate of the next solve.
     pub fn set_initial_pressure(&mut self, pressure: &[f64]) -> Result<(), ContactError> {
         self.check_len("pressure", pressure.len())?;
-        self.previous = Some(pressure.iter().map(|&p| p.max(0.0)).collect());
+        for (w, &p) in self.work.p.iter_mut().zip(pressure) {
+            *w = p.max(0.0);
+        }
+        self.warm = WarmStart::Pressure;
         Ok(())
     }
 
@@ -249,13 +266,14 @@ impl NormalSolver {
             let hmin = gap.iter().copied().fold(f64::INFINITY, f64::min);
             return Ok(NormalSolution::empty(self.grid, gap, hmin));
         }
-        let initial = if options.warm_start {
-            self.previous.take()
+        let warm = if options.warm_start {
+            self.warm
         } else {
-            None
+            WarmStart::Cold
         };
-        let outcome = self.iterate(gap, load, target_force, initial, options);
-        let mut solution = outcome?;
+        // The workspace is overwritten from here on: a failed solve leaves nothing to reuse.
+        self.warm = WarmStart::Cold;
+        let mut solution = self.iterate(gap, load, target_force, warm, options)?;
         if options.sensitivity && solution.elements_in_contact > 0 {
             let (dfn, its) = self.sensitivity(
                 &solution.in_contact,
@@ -267,7 +285,8 @@ impl NormalSolver {
         } else if !options.sensitivity {
             solution.dfn_dapproach = None;
         }
-        self.previous = Some(solution.pressure.clone());
+        // The sensitivity solve leaves work.p and work.u untouched.
+        self.warm = WarmStart::Solution;
         Ok(solution)
     }
 
@@ -277,7 +296,7 @@ impl NormalSolver {
         gap: &[f64],
         load: NormalLoad,
         target_force: Option<f64>,
-        initial: Option<Vec<f64>>,
+        warm: WarmStart,
         options: &SolverOptions,
     ) -> Result<NormalSolution, ContactError> {
         let area = self.grid.element_area();
@@ -285,16 +304,15 @@ impl NormalSolver {
         let force_mode = target_force.is_some();
         let target_sum = target_force.map(|f| f / area);
 
-        // Initial iterate.
-        {
-            let w = &mut self.work;
-            match initial {
-                Some(p0) if p0.len() == n => w.p.copy_from_slice(&p0),
-                _ => w.p.fill(0.0),
-            }
+        // Initial iterate: the workspace's pressure when warm, zero otherwise.
+        let mut u_valid = warm == WarmStart::Solution;
+        if warm == WarmStart::Cold {
+            self.work.p.fill(0.0);
+            u_valid = false;
         }
         if let Some(sum) = target_sum {
             if self.work.p.iter().sum::<f64>() <= 0.0 {
+                u_valid = false;
                 initial_force_guess(
                     &self.grid,
                     &self.material,
@@ -311,8 +329,12 @@ impl NormalSolver {
             }
             let scale = sum / s;
             self.work.p.iter_mut().for_each(|p| *p *= scale);
+            // u = A p is linear in p.
+            self.work.u.iter_mut().for_each(|u| *u *= scale);
         }
-        self.exact_displacement();
+        if !u_valid {
+            self.exact_displacement();
+        }
         let mut approach = match load {
             NormalLoad::Approach(d) => d,
             NormalLoad::Force(_) => mean_over(&self.work.p, gap, &self.work.u, |p| p > 0.0),
@@ -354,12 +376,16 @@ impl NormalSolver {
             if force_mode {
                 remove_active_mean(&mut w.z, &w.active);
             }
-            // 2. Polak–Ribière direction.
-            let rz = dot(&w.r, &w.z);
+            // 2. Polak–Ribière direction (zᵀr and zᵀr_prev in one pass).
+            let (mut rz, mut rz_old) = (0.0, 0.0);
+            for i in 0..n {
+                rz += w.r[i] * w.z[i];
+                rz_old += w.z[i] * w.r_prev[i];
+            }
             let beta = if restart || rz_prev <= 0.0 {
                 0.0
             } else {
-                ((rz - dot(&w.z, &w.r_prev)) / rz_prev).max(0.0)
+                ((rz - rz_old) / rz_prev).max(0.0)
             };
             for i in 0..n {
                 w.v[i] = if w.active[i] {
@@ -367,47 +393,44 @@ impl NormalSolver {
                 } else {
                     0.0
                 };
+                w.r_prev[i] = w.r[i];
             }
-            w.r_prev.copy_from_slice(&w.r);
             rz_prev = rz;
             // 3. step along v.
             self.conv
                 .apply(&self.influence, &self.work.v, &mut self.work.q);
             self.convolutions += 1;
             let w = &mut self.work;
-            let vq = masked_dot(&w.v, &w.q, &w.active);
-            let rv = dot(&w.r, &w.v);
+            let (mut vq, mut rv) = (0.0, 0.0);
+            for i in 0..n {
+                if w.active[i] {
+                    vq += w.v[i] * w.q[i];
+                }
+                rv += w.r[i] * w.v[i];
+            }
+            // 4. update, relative change and projection in one pass.
+            let mut clipped = false;
             if vq <= 0.0 || rv == 0.0 {
                 // No descent possible: the residual vanished (exact solution) or round-off.
                 change = 0.0;
             } else {
                 let alpha = rv / vq;
-                let mut dp2 = 0.0;
+                let (mut dp2, mut p2) = (0.0, 0.0);
                 for i in 0..n {
                     let dp = alpha * w.v[i];
-                    w.p[i] += dp;
+                    let p = w.p[i] + dp;
                     w.u[i] += alpha * w.q[i];
                     dp2 += dp * dp;
+                    p2 += p * p;
+                    clipped |= p < 0.0;
+                    w.p[i] = p.max(0.0);
                 }
-                let p2: f64 = w.p.iter().map(|p| p * p).sum();
                 change = if p2 > 0.0 {
                     (dp2 / p2).sqrt()
                 } else {
                     f64::INFINITY
                 };
             }
-            // 4. projection.
-            let clipped = {
-                let w = &mut self.work;
-                let mut clipped = false;
-                for p in w.p.iter_mut() {
-                    if *p < 0.0 {
-                        *p = 0.0;
-                        clipped = true;
-                    }
-                }
-                clipped
-            };
             if clipped {
                 if let Some(sum) = target_sum {
                     rescale(&mut self.work.p, sum);

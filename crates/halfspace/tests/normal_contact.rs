@@ -273,12 +273,14 @@ fn flat_punch_stiffness_matches_boussinesq() {
     });
     let mut solver = NormalSolver::new(grid, m).unwrap();
     let approach = 1e-6;
+    // Tight tolerances on both solves: the identity below is checked to 1e-8.
+    let opts = SolverOptions {
+        tol: 1e-12,
+        sensitivity_tol: 1e-12,
+        ..Default::default()
+    };
     let sol = solver
-        .solve(
-            &gap,
-            NormalLoad::Approach(approach),
-            &SolverOptions::default(),
-        )
+        .solve(&gap, NormalLoad::Approach(approach), &opts)
         .unwrap();
     assert_relative_eq!(
         sol.normal_force,
