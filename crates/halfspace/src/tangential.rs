@@ -1139,3 +1139,52 @@ fn solve2(m: &[[f64; 2]; 2], r: [f64; 2]) -> Option<[f64; 2]> {
     }
     None
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn element_solve_satisfies_coulomb_exactly() {
+        // For anisotropic own coefficients (C_xx ≠ C_yy) the slip solution must lie on the
+        // bound, with the resulting shift S = r + D p opposite to p (Coulomb's law), checked
+        // directly for a fan of right-hand sides; inside the bound S = 0.
+        let (cx, cy, g) = (1.3, 0.7, 2.0);
+        for k in 0..24 {
+            let t = k as f64 * std::f64::consts::PI / 12.0 + 0.1;
+            for mag in [0.5, 2.0, 10.0] {
+                let (rx, ry) = (mag * t.cos(), mag * t.sin());
+                let (px, py, slip) = local_solve(rx, ry, cx, cy, g);
+                let (sx, sy) = (rx + cx * px, ry + cy * py);
+                if slip {
+                    assert!((px.hypot(py) - g).abs() < 1e-12 * g);
+                    // S ∥ −p with a positive factor.
+                    let cross = sx * py - sy * px;
+                    assert!(cross.abs() < 1e-10 * mag * g, "{cross}");
+                    assert!(sx * px + sy * py < 0.0);
+                } else {
+                    assert!(px.hypot(py) <= g * (1.0 + 1e-12));
+                    assert!(sx.hypot(sy) < 1e-14 * mag);
+                }
+            }
+        }
+        // Isotropic fast path: the same law.
+        let (px, py, slip) = local_solve(3.0, 4.0, 1.0, 1.0, 1.0);
+        assert!(slip);
+        assert!((px + 0.6).abs() < 1e-15 && (py + 0.8).abs() < 1e-15);
+    }
+
+    #[test]
+    fn solve2_handles_decoupled_singular_systems() {
+        assert_eq!(
+            solve2(&[[2.0, 0.0], [0.0, 4.0]], [2.0, 8.0]),
+            Some([1.0, 2.0])
+        );
+        // F_y does not respond (2D strip, η has no effect): keep η at zero.
+        assert_eq!(
+            solve2(&[[2.0, 0.0], [0.0, 0.0]], [2.0, 0.0]),
+            Some([1.0, 0.0])
+        );
+        assert_eq!(solve2(&[[0.0, 0.0], [0.0, 0.0]], [1.0, 1.0]), None);
+    }
+}
