@@ -342,3 +342,70 @@ fn every_implicit_integrator_runs_the_coupled_step() {
         assert!((p / reference - 1.0).abs() < tol);
     }
 }
+
+/// Very stiff Hertz contact tends to the rigid constraint: a quarter car over a 0.3 mm dip with
+/// E = 210 GPa, ×100 and ×10⁴ (same integrator, generalized-α ρ∞ = 0.8, Δt = 1e-4 s). The
+/// contact compliance scales like δ ∝ E*^{-2/3}, so each factor 100 in E should shrink the
+/// difference to the rigid run by about 100^{2/3} ≈ 21.5: the largest wheel-displacement
+/// difference must fall by a factor in [15, 30] per factor 100 (measured 21.5 and 21.9), and
+/// the stiffest run must match the rigid bridge deflection to 1e-5 of its peak (measured
+/// 2.9e-7).
+#[test]
+fn stiff_hertz_tends_to_rigid() {
+    let run = |contact: ContactModel, e_factor: f64| {
+        let wheel = WheelSpec {
+            position: 0.0,
+            wheel_mass: 600.0,
+            body_mass: 5750.0,
+            suspension_stiffness: 1595e3,
+            suspension_damping: 2e4,
+            static_load: 0.0,
+        };
+        let mut sc = scenario(vec![wheel], contact, 1e-4, 10);
+        sc.geometry.youngs_modulus *= e_factor;
+        sc.method = StructuralMethod::generalized_alpha(0.8).unwrap();
+        sc.irregularity = Irregularity::Dip {
+            position: 5.0,
+            length: 1.0,
+            depth: 0.3e-3,
+        };
+        sc.duration = Some(0.4);
+        let mut sim = Simulation::new(sc).unwrap();
+        let mut h = Vec::new();
+        sim.run(|s| {
+            h.push((
+                s.wheels()[0].wheel_displacement,
+                s.output_point_response().0,
+            ))
+        })
+        .unwrap();
+        h
+    };
+    let rigid = run(ContactModel::Rigid, 1.0);
+    let peak = rigid.iter().fold(0.0f64, |m, r| m.max(r.1.abs()));
+    let diffs: Vec<(f64, f64)> = [1.0, 1e2, 1e4]
+        .iter()
+        .map(|&f| {
+            let h = run(ContactModel::Hertz, f);
+            h.iter()
+                .zip(&rigid)
+                .fold((0.0f64, 0.0f64), |(a, b), (x, y)| {
+                    (a.max((x.0 - y.0).abs()), b.max((x.1 - y.1).abs()))
+                })
+        })
+        .collect();
+    for (i, d) in diffs.iter().enumerate() {
+        println!(
+            "E × 1e{}: max |z_w − z_rigid| = {:.3e} m, max |w − w_rigid| = {:.3e} ({:.2e} of peak)",
+            2 * i,
+            d.0,
+            d.1,
+            d.1 / peak
+        );
+    }
+    for pair in diffs.windows(2) {
+        let ratio = pair[0].0 / pair[1].0;
+        assert!((15.0..30.0).contains(&ratio), "{ratio}");
+    }
+    assert!(diffs[2].1 < 1e-5 * peak);
+}
