@@ -41,7 +41,11 @@
 //!   reference.
 //!
 //! A rigid contact enters all of them as a zero compliance (an exact constraint); Picard needs
-//! compliant contacts. A step whose iteration fails (no convergence in `max_iter`, divergence,
+//! compliant contacts. The quasi-Newton iteration starts from the predictor corrected by the
+//! previous step's contact linearisation (`F ≈ F_n + k_n(δ − δ_n)`, column forces carried with
+//! the wheel), computes the BEM tangent at the first contact evaluation of a step only, and
+//! accepts the corrected state with the linearised forces once every predicted force
+//! correction is within the tolerance; in a smooth run most steps need one contact solve. A step whose iteration fails (no convergence in `max_iter`, divergence,
 //! a contact-solver failure) is retried as two half steps, recursively up to `max_halvings`
 //! times; every retry is counted in [`SolverStats::failed_steps`], and a step that still fails
 //! is an error.
