@@ -189,6 +189,13 @@ pub fn parse(text: &str) -> Result<(Scenario, usize, usize)> {
     }
     let method = StructuralMethod::by_name(method_name, &params)
         .map_err(|e| anyhow!("[integrator] `method` = \"{method_name}\": {e}"))?;
+    if contact == ContactModel::Rigid
+        && matches!(method, StructuralMethod::Newmark { gamma, .. } if gamma <= 0.5)
+    {
+        eprintln!(
+            "warning: rigid contact with the undamped Newmark rule (gamma = 0.5): the contact multiplier can ring and grow at a slope kink (a wheel entering a deflected span); [integrator] method = \"generalized_alpha\" or \"hht\" damps it (docs/vehicle_bridge.md)"
+        );
+    }
     let dt = integ.and_then(|i| i.dt).unwrap_or(1e-4);
     let duration = integ.and_then(|i| i.duration);
 
