@@ -113,7 +113,7 @@ pub fn contact(max_n: usize) -> Result<()> {
         "conv = FFT convolutions in the first (cold, no sensitivity) solve; err = relative error against Hertz;"
     );
     println!(
-        "dF/dδ ms, s-iter = extra time and CG iterations of the linearised sensitivity solve (tol 1e-10)."
+        "dF/dδ ms, s-iter = extra time and CG iterations of the linearised sensitivity solve (default tol 1e-6)."
     );
     Ok(())
 }
