@@ -48,6 +48,30 @@
 //! # Ok::<(), integrate::IntegrateError>(())
 //! ```
 
+/// The bookkeeping methods of [`OdeStepper`] that the steppers implement identically
+/// (statistics, step cap, stop time, last step size), for a stepper that keeps `t`, `t_prev`,
+/// `stats`, `h_cap` and `t_stop` in itself (`stepper_bookkeeping!()`) or in a field
+/// (`stepper_bookkeeping!(state)`).
+macro_rules! stepper_bookkeeping {
+    ($($path:ident).*) => {
+        fn stats(&self) -> Stats {
+            self$(.$path)*.stats
+        }
+        fn reset_stats(&mut self) {
+            self$(.$path)*.stats = Stats::default();
+        }
+        fn set_max_step(&mut self, h_max: f64) {
+            self$(.$path)*.h_cap = if h_max > 0.0 { h_max } else { f64::INFINITY };
+        }
+        fn set_stop_time(&mut self, t_stop: Option<f64>) {
+            self$(.$path)*.t_stop = t_stop;
+        }
+        fn last_step_size(&self) -> f64 {
+            self$(.$path)*.t - self$(.$path)*.t_prev
+        }
+    };
+}
+
 mod adams;
 mod backward_euler;
 mod bdf;

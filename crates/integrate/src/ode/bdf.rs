@@ -569,23 +569,5 @@ impl OdeStepper for Bdf {
         Ok(())
     }
 
-    fn stats(&self) -> Stats {
-        self.stats
-    }
-
-    fn reset_stats(&mut self) {
-        self.stats = Stats::default();
-    }
-
-    fn set_max_step(&mut self, h_max: f64) {
-        self.h_cap = if h_max > 0.0 { h_max } else { f64::INFINITY };
-    }
-
-    fn set_stop_time(&mut self, t_stop: Option<f64>) {
-        self.t_stop = t_stop;
-    }
-
-    fn last_step_size(&self) -> f64 {
-        self.t - self.t_prev
-    }
+    stepper_bookkeeping!();
 }

@@ -127,21 +127,7 @@ macro_rules! fixed_step_accessors {
         fn interpolate(&self, t: f64, out: &mut [f64]) -> Result<(), IntegrateError> {
             self.state.interpolate(t, out)
         }
-        fn stats(&self) -> Stats {
-            self.state.stats
-        }
-        fn reset_stats(&mut self) {
-            self.state.stats = Stats::default();
-        }
-        fn set_max_step(&mut self, h_max: f64) {
-            self.state.h_cap = if h_max > 0.0 { h_max } else { f64::INFINITY };
-        }
-        fn set_stop_time(&mut self, t_stop: Option<f64>) {
-            self.state.t_stop = t_stop;
-        }
-        fn last_step_size(&self) -> f64 {
-            self.state.t - self.state.t_prev
-        }
+        stepper_bookkeeping!(state);
         fn set_state(
             &mut self,
             sys: &mut dyn OdeSystem,
@@ -590,23 +576,5 @@ impl OdeStepper for Dopri5 {
         Ok(())
     }
 
-    fn stats(&self) -> Stats {
-        self.stats
-    }
-
-    fn reset_stats(&mut self) {
-        self.stats = Stats::default();
-    }
-
-    fn set_max_step(&mut self, h_max: f64) {
-        self.h_cap = if h_max > 0.0 { h_max } else { f64::INFINITY };
-    }
-
-    fn set_stop_time(&mut self, t_stop: Option<f64>) {
-        self.t_stop = t_stop;
-    }
-
-    fn last_step_size(&self) -> f64 {
-        self.t - self.t_prev
-    }
+    stepper_bookkeeping!();
 }
