@@ -54,6 +54,29 @@ pub struct CoupledSolution {
     pub effective_gap: Vec<f64>,
 }
 
+/// Relative rms change of the pressure and of the traction between two outer iterations,
+/// whichever is larger (infinite on the first iteration).
+fn outer_change(
+    prev_pn: Option<&[f64]>,
+    prev_pt: Option<&(Vec<f64>, Vec<f64>)>,
+    pn: &[f64],
+    (px, py): (&[f64], &[f64]),
+) -> f64 {
+    let (dn, nn) = match prev_pn {
+        Some(p) => rms_change(pn, p),
+        None => (f64::INFINITY, 1.0),
+    };
+    let (dt, nt) = match prev_pt {
+        Some((x, y)) => {
+            let (a, b) = rms_change(px, x);
+            let (c, d) = rms_change(py, y);
+            (a.hypot(c), b.hypot(d))
+        }
+        None => (f64::INFINITY, 1.0),
+    };
+    (dn / nn.max(f64::MIN_POSITIVE)).max(if nt > 0.0 { dt / nt } else { 0.0 })
+}
+
 fn rms_change(new: &[f64], old: &[f64]) -> (f64, f64) {
     let d: f64 = new.iter().zip(old).map(|(a, b)| (a - b) * (a - b)).sum();
     let n: f64 = new.iter().map(|a| a * a).sum();
@@ -105,19 +128,12 @@ pub fn solve_coupled(
                 tangential.steady_rolling(&ns.pressure, mu, l, tangential_options)?
             }
         };
-        let (dn, nn) = match &prev_pn {
-            Some(p) => rms_change(&ns.pressure, p),
-            None => (f64::INFINITY, 1.0),
-        };
-        let (dt, nt) = match &prev_pt {
-            Some((x, y)) => {
-                let (a, b) = rms_change(&ts.traction_x, x);
-                let (c, d) = rms_change(&ts.traction_y, y);
-                (a.hypot(c), b.hypot(d))
-            }
-            None => (f64::INFINITY, 1.0),
-        };
-        change = (dn / nn.max(f64::MIN_POSITIVE)).max(if nt > 0.0 { dt / nt } else { 0.0 });
+        change = outer_change(
+            prev_pn.as_deref(),
+            prev_pt.as_ref(),
+            &ns.pressure,
+            (&ts.traction_x, &ts.traction_y),
+        );
         if decoupled || change <= options.tol {
             return Ok(CoupledSolution {
                 normal: ns,
@@ -185,19 +201,12 @@ pub fn solve_coupled_step(
             motion,
             tangential_options,
         )?;
-        let (dn, nn) = match &prev_pn {
-            Some(p) => rms_change(&ns.pressure, p),
-            None => (f64::INFINITY, 1.0),
-        };
-        let (dt, nt) = match &prev_pt {
-            Some((x, y)) => {
-                let (a, b) = rms_change(&ts.traction_x, x);
-                let (c, d) = rms_change(&ts.traction_y, y);
-                (a.hypot(c), b.hypot(d))
-            }
-            None => (f64::INFINITY, 1.0),
-        };
-        change = (dn / nn.max(f64::MIN_POSITIVE)).max(if nt > 0.0 { dt / nt } else { 0.0 });
+        change = outer_change(
+            prev_pn.as_deref(),
+            prev_pt.as_ref(),
+            &ns.pressure,
+            (&ts.traction_x, &ts.traction_y),
+        );
         if decoupled || change <= options.tol {
             return Ok(CoupledSolution {
                 normal: ns,
