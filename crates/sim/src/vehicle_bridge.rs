@@ -59,6 +59,7 @@
 mod contact;
 pub mod irregularity;
 pub mod linalg;
+pub mod traction;
 
 use beam::{BeamError, Derivative, ModalBasis, ModalDamping};
 use faer::{Mat, MatRef};
@@ -317,6 +318,8 @@ pub struct Simulation {
     output_shapes: Vec<f64>,
     loss_events: usize,
     in_contact: Vec<bool>,
+    /// Longitudinal friction (`None` = frictionless; see [`traction`]).
+    traction: Option<traction::Traction>,
 }
 
 #[derive(Debug, Default)]
@@ -671,6 +674,7 @@ impl Simulation {
             loss_events: 0,
             in_contact: vec![true; nw],
             scenario,
+            traction: None,
         };
         sim.initial_samples()?;
         Ok(sim)
@@ -820,7 +824,28 @@ impl Simulation {
     /// Advances by one step of the scenario's Δt (with step reduction on failure).
     pub fn step(&mut self) -> Result<(), VehicleBridgeError> {
         let dt = self.scenario.dt;
-        self.advance(dt, 0)
+        self.advance(dt, 0)?;
+        if let Some(tr) = self.traction.as_mut() {
+            tr.update(dt, self.scenario.speed, &self.samples, &self.laws)?;
+        }
+        Ok(())
+    }
+
+    /// Switches on longitudinal friction (module [`traction`]; weak coupling after every
+    /// step). Call before the first step; `exact` needs the `bem` contact law.
+    pub fn set_traction(&mut self, spec: traction::TractionSpec) -> Result<(), VehicleBridgeError> {
+        self.traction = Some(traction::Traction::new(
+            spec,
+            &self.scenario.geometry,
+            &self.laws,
+            self.scenario.speed,
+        )?);
+        Ok(())
+    }
+
+    /// The traction state (`None` without `set_traction`).
+    pub fn traction(&self) -> Option<&traction::Traction> {
+        self.traction.as_ref()
     }
 
     /// Steps to the end time, calling `progress(t)` after every step.

@@ -60,6 +60,12 @@ pub trait ContactLaw: std::fmt::Debug {
         out.clear();
     }
 
+    /// The grid and pressure [Pa] of the last evaluation (row-major, x fastest) for laws that
+    /// solve the pressure field (`bem`); `None` for the closed forms.
+    fn pressure_field(&self) -> Option<(&Grid, &[f64])> {
+        None
+    }
+
     /// Evaluates the law at approach `delta` with the column gap terms `column_gap` (see the
     /// module documentation; length = number of columns), writing the force of each column
     /// into `column_force`. With `tangent = false` a law may return the tangent of its previous
@@ -338,6 +344,10 @@ impl BemLaw {
 impl ContactLaw for BemLaw {
     fn name(&self) -> &'static str {
         "bem"
+    }
+
+    fn pressure_field(&self) -> Option<(&Grid, &[f64])> {
+        Some((&self.grid, &self.pressure))
     }
 
     fn columns(&self) -> &[f64] {
