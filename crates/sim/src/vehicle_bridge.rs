@@ -11,6 +11,14 @@
 //!   (k_s, c_s), and a constant extra load P:
 //!   `m_w z_w'' = m_w g + P − F_k + k_s(z_b − z_w) + c_s(ż_b − ż_w)`,
 //!   `m_b z_b'' = m_b g − k_s(z_b − z_w) − c_s(ż_b − ż_w)`.
+//! * A massless wheel (m_w = 0; rigid contact and a body required) is the classic sprung mass
+//!   of Biggs and Yang–Yau (dynamics.md §1.3): its row is the force balance
+//!   `F = P + k_s(z_b − z_w) + c_s(ż_b − ż_w)` and the constraint z_w = w(x_k) − r(x_k) fixes
+//!   its position, so the body rides on a spring–damper whose lower end follows the rail. The
+//!   wheel DOF stays in the state vector without inertia: the step matrix A keeps it
+//!   non-singular through the suspension terms (c_C c_s + c_K k_s), and the contact multiplier
+//!   F closes the row. In loss of contact (F = 0) the row becomes the first-order suspension
+//!   balance `P + k_s(z_b − z_w) + c_s(ż_b − ż_w) = 0` (the massless wheel hangs on the body).
 //! * Contact: the approach `δ_k = z_w − w(x_k) + r(x_k)` (r: rail irregularity, positive up)
 //!   and `F_k = F(δ_k)` by a [`ContactLaw`]: `rigid` (δ_k = 0 while F_k > 0, a Lagrange
 //!   multiplier: the wheel follows the rail, which is the moving-mass model of dynamics.md
@@ -121,7 +129,8 @@ fn invalid(name: impl Into<String>, value: f64, reason: &str) -> VehicleBridgeEr
 pub struct WheelSpec {
     /// Position along the track at t = 0 [m] (0 = left end of the span).
     pub position: f64,
-    /// Wheel (unsprung) mass m_w [kg], > 0.
+    /// Wheel (unsprung) mass m_w [kg], ≥ 0; 0 = a massless wheel, which needs the rigid
+    /// contact and a body (module documentation).
     pub wheel_mass: f64,
     /// Sprung body mass m_b [kg] (0 = none).
     pub body_mass: f64,
@@ -318,6 +327,8 @@ pub struct Simulation {
     output_shapes: Vec<f64>,
     loss_events: usize,
     in_contact: Vec<bool>,
+    /// DOFs of massless wheels (placeholder mass in the stepper; see `Simulation::new`).
+    massless: Vec<usize>,
     /// Longitudinal friction (`None` = frictionless; see [`traction`]).
     traction: Option<traction::Traction>,
 }
@@ -484,12 +495,31 @@ impl Simulation {
             if !w.position.is_finite() {
                 return Err(invalid(key("position"), w.position, "must be finite"));
             }
-            if !(w.wheel_mass.is_finite() && w.wheel_mass > 0.0) {
+            if !(w.wheel_mass.is_finite() && w.wheel_mass >= 0.0) {
                 return Err(invalid(
                     key("wheel_mass"),
                     w.wheel_mass,
-                    "must be positive (a massless wheel is not supported by this solver; use a light wheel)",
+                    "must be finite and >= 0 (0 = massless wheel)",
                 ));
+            }
+            if w.wheel_mass == 0.0 {
+                // A massless wheel has no equation of motion of its own: its position must be
+                // fixed by the rail (rigid constraint) and its force balance
+                // F = P + k_s(z_b − z_w) + c_s(ż_b − ż_w) needs the suspension of a body.
+                if scenario.contact != ContactModel::Rigid {
+                    return Err(invalid(
+                        key("wheel_mass"),
+                        0.0,
+                        "a massless wheel needs contact.model = \"rigid\" (a compliant contact would leave the wheel DOF without inertia against the contact spring)",
+                    ));
+                }
+                if w.body_mass <= 0.0 {
+                    return Err(invalid(
+                        key("wheel_mass"),
+                        0.0,
+                        "a massless wheel needs a sprung body (body_mass > 0); without one it is a moving force: use static_load on a light wheel",
+                    ));
+                }
             }
             check_non_negative(key("body_mass"), w.body_mass)?;
             check_non_negative(key("suspension_stiffness"), w.suspension_stiffness)?;
@@ -620,7 +650,27 @@ impl Simulation {
                 v0[ib] = -scenario.speed * slope;
             }
         }
-        let stepper = StructuralStepper::new(scenario.method, &mut structure, 0.0, &q0, &v0)?;
+        // The stepper factorises M for the start acceleration and rejects a zero diagonal: a
+        // massless wheel DOF gets the placeholder mass 1 kg for its construction only. Its start
+        // acceleration is then (f_ext − C v − K q)_w / 1 = 0 (the static start balances the
+        // wheel row exactly), and the placeholder's α_m term in the step's history force is
+        // removed in `try_step` (`massless_history`); the step matrix A and the effective load
+        // use the true mass 0.
+        let massless: Vec<usize> = scenario
+            .wheels
+            .iter()
+            .zip(&wheel_dof)
+            .filter(|(w, _)| w.wheel_mass == 0.0)
+            .map(|(_, &iw)| iw)
+            .collect();
+        for &iw in &massless {
+            structure.mass[(iw, iw)] = 1.0;
+        }
+        let stepper = StructuralStepper::new(scenario.method, &mut structure, 0.0, &q0, &v0);
+        for &iw in &massless {
+            structure.mass[(iw, iw)] = 0.0;
+        }
+        let stepper = stepper?;
         let nw = scenario.wheels.len();
         let ncols: Vec<usize> = laws.iter().map(|l| l.columns().len()).collect();
         let work = Work {
@@ -673,6 +723,7 @@ impl Simulation {
             output_shapes,
             loss_events: 0,
             in_contact: vec![true; nw],
+            massless,
             scenario,
             traction: None,
         };
@@ -1100,6 +1151,16 @@ impl Simulation {
         self.stepper
             .step_equation_into(dt, &mut self.eq)
             .map_err(|e| fatal(e.into()))?;
+        // Massless wheels: the stepper's history force holds α_m × (placeholder mass) × its
+        // start acceleration; the true row has no inertia, only α_f (K q_n + C v_n).
+        for &iw in &self.massless {
+            let (q, v) = (self.stepper.q(), self.stepper.v());
+            let st = &self.structure;
+            let elastic: f64 = (0..q.len())
+                .map(|j| st.stiffness[(iw, j)] * q[j] + st.damping[(iw, j)] * v[j])
+                .sum();
+            self.eq.history_force[iw] = self.eq.alpha_f * elastic;
+        }
         self.update_a();
         let s = 1.0 - self.eq.alpha_f;
         let n = self.work.x.len();
