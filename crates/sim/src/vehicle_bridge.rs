@@ -67,6 +67,7 @@
 mod contact;
 pub mod irregularity;
 pub mod linalg;
+pub mod radau;
 pub mod traction;
 
 use beam::{BeamError, Derivative, ModalBasis, ModalDamping};
@@ -78,6 +79,7 @@ use integrate::structural::{StepEquation, StructuralMethod, StructuralStepper, S
 pub use contact::{BemLaw, ContactGeometry, ContactLaw, ContactOutput, HertzLaw, RigidLaw};
 pub use irregularity::{Irregularity, RandomProfile, TrackSpectrum};
 use linalg::{BlockDiagonal, CapacitanceWork, contact_update, dense_contact_update};
+pub use radau::Radau5Spec;
 
 /// Standard gravity [m/s²].
 pub const GRAVITY: f64 = 9.81;
@@ -331,6 +333,8 @@ pub struct Simulation {
     massless: Vec<usize>,
     /// Longitudinal friction (`None` = frictionless; see [`traction`]).
     traction: Option<traction::Traction>,
+    /// The Radau5 path (`None` = the structural method of the scenario; see [`radau`]).
+    radau: Option<radau::RadauPath>,
 }
 
 #[derive(Debug, Default)]
@@ -726,6 +730,7 @@ impl Simulation {
             massless,
             scenario,
             traction: None,
+            radau: None,
         };
         sim.initial_samples()?;
         Ok(sim)
@@ -875,7 +880,11 @@ impl Simulation {
     /// Advances by one step of the scenario's Δt (with step reduction on failure).
     pub fn step(&mut self) -> Result<(), VehicleBridgeError> {
         let dt = self.scenario.dt;
-        self.advance(dt, 0)?;
+        if self.radau.is_some() {
+            self.radau_step(dt)?;
+        } else {
+            self.advance(dt, 0)?;
+        }
         if let Some(tr) = self.traction.as_mut() {
             tr.update(dt, self.scenario.speed, &self.samples, &self.laws)?;
         }
