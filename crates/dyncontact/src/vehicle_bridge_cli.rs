@@ -10,6 +10,7 @@ use anyhow::{Context, Result, anyhow, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use integrate::structural::StructuralMethod;
 use serde::{Deserialize, Serialize};
+use sim::vehicle_bridge::traction::{TractionDrive, TractionMethod, TractionSample, TractionSpec};
 use sim::vehicle_bridge::{
     ContactGeometry, ContactModel, CouplingSolver, CouplingSpec, GRAVITY, Irregularity, Scenario,
     Simulation, TrackSpectrum, WheelSpec,
@@ -34,6 +35,53 @@ pub struct VehicleBridgeFile {
     pub integrator: Option<IntegratorSpec>,
     pub coupling: Option<CouplingToml>,
     pub output: Option<OutputSpec>,
+    /// Longitudinal friction (optional; docs/vehicle_bridge.md, "Traction (friction)").
+    pub traction: Option<TractionToml>,
+}
+
+/// `[traction]`: friction coefficient, tangential method and either a prescribed creepage or
+/// a wheel torque [N m] with the wheel's polar inertia [kg m²].
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TractionToml {
+    pub mu: f64,
+    pub method: Option<String>,
+    pub creepage: Option<f64>,
+    pub torque: Option<f64>,
+    pub wheel_inertia: Option<f64>,
+    pub fastsim_elements: Option<usize>,
+}
+
+/// The `[traction]` section of a scenario file (`None` when absent: no friction). Values are
+/// range-checked by [`TractionSpec::validate`] with errors naming the key.
+pub fn parse_traction(text: &str) -> Result<Option<TractionSpec>> {
+    let file: VehicleBridgeFile =
+        toml::from_str(text).map_err(|e| anyhow!("invalid vehicle_bridge scenario: {e}"))?;
+    let Some(t) = file.traction else {
+        return Ok(None);
+    };
+    let name = t.method.as_deref().unwrap_or("fastsim");
+    let method = TractionMethod::by_name(name).ok_or_else(|| {
+        anyhow!("[traction] `method` = \"{name}\": expected exact, fastsim or linear")
+    })?;
+    let drive = match (t.creepage, t.torque, t.wheel_inertia) {
+        (Some(xi), None, None) => TractionDrive::Creepage(xi),
+        (None, Some(torque), Some(inertia)) => TractionDrive::Torque { torque, inertia },
+        (None, Some(_), None) => bail!("[traction]: `torque` needs `wheel_inertia` [kg m²]"),
+        (None, None, Some(_)) => bail!("[traction]: `wheel_inertia` applies with `torque` only"),
+        (None, None, None) => bail!("[traction]: give exactly one of `creepage` or `torque`"),
+        (Some(_), _, _) => {
+            bail!("[traction]: `creepage` and `torque`/`wheel_inertia` exclude each other")
+        }
+    };
+    let spec = TractionSpec {
+        mu: t.mu,
+        method,
+        drive,
+        fastsim_elements: t.fastsim_elements.unwrap_or(40),
+    };
+    spec.validate().map_err(|e| anyhow!("[traction]: {e}"))?;
+    Ok(Some(spec))
 }
 
 #[derive(Debug, Deserialize)]
@@ -306,6 +354,24 @@ struct Row {
     midspan: (f64, f64, f64),
     wheels: Vec<sim::vehicle_bridge::WheelSample>,
     iterations: usize,
+    traction: Vec<TractionSample>,
+}
+
+/// The `traction` object of summary.json.
+#[derive(Serialize)]
+pub struct TractionSummaryJson {
+    pub method: String,
+    pub mu: f64,
+    /// Largest |F_x| (signed) over all wheels and steps [N].
+    pub max_longitudinal_force: f64,
+    /// Mean F_x over wheel-steps in contact [N].
+    pub mean_longitudinal_force: f64,
+    /// Wheel-steps in full slip.
+    pub saturated_steps: usize,
+    /// Wheel angular velocities at the end [rad/s].
+    pub final_angular_velocity: Vec<f64>,
+    /// Always false: the longitudinal force is not applied to the (vertical) bridge model.
+    pub bridge_horizontal_load_applied: bool,
 }
 
 #[derive(Serialize)]
@@ -344,6 +410,8 @@ pub struct Summary {
     pub contact: ContactSummary,
     pub vehicle: VehicleSummary,
     pub solver: SolverSummary,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub traction: Option<TractionSummaryJson>,
     pub wall_time_s: f64,
     pub simulated_time_s: f64,
 }
@@ -358,6 +426,16 @@ pub struct Outcome {
 /// Runs a scenario, recording every `every`-th step and `snapshots` pressure snapshots of the
 /// first wheel along its passage over the span.
 pub fn simulate(scenario: Scenario, every: usize, snapshots: usize) -> Result<Outcome> {
+    simulate_with(scenario, None, every, snapshots)
+}
+
+/// [`simulate`] with longitudinal friction (`traction`, from [`parse_traction`]).
+pub fn simulate_with(
+    scenario: Scenario,
+    traction: Option<TractionSpec>,
+    every: usize,
+    snapshots: usize,
+) -> Result<Outcome> {
     let length = scenario.bridge.length();
     let model = match scenario.contact {
         ContactModel::Rigid => "rigid",
@@ -367,6 +445,9 @@ pub fn simulate(scenario: Scenario, every: usize, snapshots: usize) -> Result<Ou
     let integrator = scenario.method.name().to_string();
     let start = Instant::now();
     let mut sim = Simulation::new(scenario)?;
+    if let Some(spec) = traction {
+        sim.set_traction(spec)?;
+    }
     let end = sim.end_time();
     let dt = sim.scenario().dt;
     let steps = (end / dt - 1e-9).ceil().max(0.0) as usize;
@@ -390,6 +471,10 @@ pub fn simulate(scenario: Scenario, every: usize, snapshots: usize) -> Result<Ou
             midspan: sim.output_point_response(),
             wheels: sim.wheels().to_vec(),
             iterations,
+            traction: sim
+                .traction()
+                .map(|t| t.samples().to_vec())
+                .unwrap_or_default(),
         });
     };
     record(&sim, &mut rows, 0);
@@ -459,6 +544,18 @@ pub fn simulate(scenario: Scenario, every: usize, snapshots: usize) -> Result<Ou
             failed_steps: stats.failed_steps,
             steps: stats.steps,
         },
+        traction: sim.traction().map(|t| {
+            let s = t.summary();
+            TractionSummaryJson {
+                method: t.spec().method.name().to_string(),
+                mu: t.spec().mu,
+                max_longitudinal_force: s.max_longitudinal_force,
+                mean_longitudinal_force: s.mean_longitudinal_force,
+                saturated_steps: s.saturated_steps,
+                final_angular_velocity: t.samples().iter().map(|w| w.angular_velocity).collect(),
+                bridge_horizontal_load_applied: false,
+            }
+        }),
         wall_time_s: wall,
         simulated_time_s: sim.t(),
     };
@@ -473,6 +570,7 @@ pub fn simulate(scenario: Scenario, every: usize, snapshots: usize) -> Result<Ou
 pub fn write_outputs(dir: &Path, outcome: &Outcome) -> Result<()> {
     output::ensure_dir(dir)?;
     let nw = outcome.rows.first().map_or(0, |r| r.wheels.len());
+    let with_traction = outcome.summary.traction.is_some();
     let mut header: Vec<String> = [
         "t",
         "midspan_deflection",
@@ -493,9 +591,13 @@ pub fn write_outputs(dir: &Path, outcome: &Outcome) -> Result<()> {
         "patch_length",
         "patch_width",
         "max_pressure",
+        "longitudinal_force",
+        "creepage",
+        "adhesion_fraction",
     ];
+    let per_wheel = &per_wheel[..if with_traction { 12 } else { 9 }];
     for k in 0..nw {
-        for name in per_wheel {
+        for &name in per_wheel {
             header.push(if nw == 1 {
                 name.to_string()
             } else {
@@ -527,6 +629,14 @@ pub fn write_outputs(dir: &Path, outcome: &Outcome) -> Result<()> {
                     w.contact.patch_width,
                     w.contact.max_pressure,
                 ]);
+            }
+            for (k, t) in r.traction.iter().enumerate() {
+                // Insert after wheel k's 9 columns (the first 5 columns are global).
+                let at = 5 + (k + 1) * 12 - 3;
+                row.splice(
+                    at..at,
+                    [t.longitudinal_force, t.creepage, t.adhesion_fraction],
+                );
             }
             row
         }),
@@ -665,12 +775,19 @@ pub fn print_summary(s: &Summary) {
         s.solver.mean_contact_iterations_per_step,
         s.solver.failed_steps
     );
+    if let Some(t) = &s.traction {
+        println!(
+            "  traction ({}, mu = {}): max F_x {:.1} N, mean {:.1} N, {} saturated wheel-steps; NOT applied to the bridge (vertical modes only)",
+            t.method, t.mu, t.max_longitudinal_force, t.mean_longitudinal_force, t.saturated_steps
+        );
+    }
 }
 
 /// `dyncontact run` for `kind = "vehicle_bridge"`.
 pub fn run(text: &str, out: &Path, json: bool) -> Result<()> {
     let (scenario, every, snapshots) = parse(text)?;
-    let outcome = simulate(scenario, every, snapshots)?;
+    let traction = parse_traction(text)?;
+    let outcome = simulate_with(scenario, traction, every, snapshots)?;
     write_outputs(out, &outcome)?;
     if json {
         println!("{}", serde_json::to_string_pretty(&outcome.summary)?);
