@@ -12,8 +12,8 @@ use integrate::structural::StructuralMethod;
 use serde::{Deserialize, Serialize};
 use sim::vehicle_bridge::traction::{TractionDrive, TractionMethod, TractionSample, TractionSpec};
 use sim::vehicle_bridge::{
-    ContactGeometry, ContactModel, CouplingSolver, CouplingSpec, GRAVITY, Irregularity, Scenario,
-    Simulation, TrackSpectrum, WheelSpec,
+    ContactGeometry, ContactModel, CouplingSolver, CouplingSpec, GRAVITY, Irregularity, Radau5Spec,
+    Scenario, Simulation, TrackSpectrum, WheelSpec,
 };
 
 use crate::bridge::BridgeSpec;
@@ -144,6 +144,37 @@ pub struct IntegratorSpec {
     pub alpha: Option<f64>,
     pub rho_inf: Option<f64>,
     pub duration: Option<f64>,
+    /// Radau5 tolerances (only with `method = "radau5"`).
+    pub rtol: Option<f64>,
+    pub atol: Option<f64>,
+}
+
+/// `[integrator] method = "radau5"`: the Radau5 tolerances (`rtol`, `atol`; defaults of
+/// [`Radau5Spec`]), or `None` for a structural method. `rtol`/`atol` with another method are
+/// an error naming the key.
+pub fn parse_radau5(text: &str) -> Result<Option<Radau5Spec>> {
+    let file: VehicleBridgeFile =
+        toml::from_str(text).map_err(|e| anyhow!("invalid vehicle_bridge scenario: {e}"))?;
+    let Some(i) = file.integrator else {
+        return Ok(None);
+    };
+    let radau = i
+        .method
+        .as_deref()
+        .is_some_and(|m| m.trim().eq_ignore_ascii_case("radau5"));
+    if !radau {
+        for (key, v) in [("rtol", i.rtol), ("atol", i.atol)] {
+            if v.is_some() {
+                bail!("[integrator] `{key}` is only used by method = \"radau5\"");
+            }
+        }
+        return Ok(None);
+    }
+    let d = Radau5Spec::default();
+    Ok(Some(Radau5Spec {
+        rtol: i.rtol.unwrap_or(d.rtol),
+        atol: i.atol.unwrap_or(d.atol),
+    }))
 }
 
 #[derive(Debug, Deserialize)]
@@ -235,9 +266,16 @@ pub fn parse(text: &str) -> Result<(Scenario, usize, usize)> {
             }
         }
     }
-    let method = StructuralMethod::by_name(method_name, &params)
-        .map_err(|e| anyhow!("[integrator] `method` = \"{method_name}\": {e}"))?;
+    // radau5 replaces the structural method (parse_radau5, Simulation::set_radau5); the
+    // scenario keeps a placeholder that is not used.
+    let method = if method_name.trim().eq_ignore_ascii_case("radau5") {
+        StructuralMethod::average_acceleration()
+    } else {
+        StructuralMethod::by_name(method_name, &params)
+            .map_err(|e| anyhow!("[integrator] `method` = \"{method_name}\": {e}"))?
+    };
     if contact == ContactModel::Rigid
+        && !method_name.trim().eq_ignore_ascii_case("radau5")
         && matches!(method, StructuralMethod::Newmark { gamma, .. } if gamma <= 0.5)
     {
         eprintln!(
@@ -436,15 +474,33 @@ pub fn simulate_with(
     every: usize,
     snapshots: usize,
 ) -> Result<Outcome> {
+    simulate_full(scenario, traction, None, every, snapshots)
+}
+
+/// [`simulate_with`] with an optional Radau5 integration (from [`parse_radau5`]).
+pub fn simulate_full(
+    scenario: Scenario,
+    traction: Option<TractionSpec>,
+    radau: Option<Radau5Spec>,
+    every: usize,
+    snapshots: usize,
+) -> Result<Outcome> {
     let length = scenario.bridge.length();
     let model = match scenario.contact {
         ContactModel::Rigid => "rigid",
         ContactModel::Hertz => "hertz",
         ContactModel::Bem { .. } => "bem",
     };
-    let integrator = scenario.method.name().to_string();
+    let integrator = if radau.is_some() {
+        "radau5".to_string()
+    } else {
+        scenario.method.name().to_string()
+    };
     let start = Instant::now();
     let mut sim = Simulation::new(scenario)?;
+    if let Some(spec) = radau {
+        sim.set_radau5(spec)?;
+    }
     if let Some(spec) = traction {
         sim.set_traction(spec)?;
     }
@@ -535,7 +591,12 @@ pub fn simulate_with(
             static_wheel_loads: sim.static_loads().to_vec(),
         },
         solver: SolverSummary {
-            method: sim.scenario().coupling.solver.name().to_string(),
+            // With Radau5 the coupling is its own simplified Newton iteration.
+            method: if sim.uses_radau5() {
+                "radau5_newton".to_string()
+            } else {
+                sim.scenario().coupling.solver.name().to_string()
+            },
             integrator,
             mean_iterations_per_step: stats.iterations as f64 / stats.steps.max(1) as f64,
             max_iterations_per_step: stats.max_iterations,
@@ -787,7 +848,8 @@ pub fn print_summary(s: &Summary) {
 pub fn run(text: &str, out: &Path, json: bool) -> Result<()> {
     let (scenario, every, snapshots) = parse(text)?;
     let traction = parse_traction(text)?;
-    let outcome = simulate_with(scenario, traction, every, snapshots)?;
+    let radau = parse_radau5(text)?;
+    let outcome = simulate_full(scenario, traction, radau, every, snapshots)?;
     write_outputs(out, &outcome)?;
     if json {
         println!("{}", serde_json::to_string_pretty(&outcome.summary)?);
