@@ -141,3 +141,64 @@ fn traction_input_errors_name_the_key() {
         assert!(!err.contains("panicked"), "{err}");
     }
 }
+
+/// Two wheels (the second with a 10 kN smaller extra load): every wheel's block of columns
+/// keeps its order with the three traction columns at its end, each wheel's F_x is Kalker's
+/// −G c² C₁₁ ξ for its own static load (1e-9), and the shipped braking example runs.
+#[test]
+fn two_wheels_get_their_own_traction_columns() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = scenario("mu = 0.3\nmethod = \"linear\"\ncreepage = 1e-4").replace(
+        "[contact]",
+        "[[vehicle.wheels]]\nposition = -5.0\nwheel_mass = 600.0\nstatic_load = 40e3\n\n[contact]",
+    );
+    let out = run(dir.path(), &text);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(dir.path().join("out/timeseries.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let last: Vec<f64> = lines
+        .last()
+        .unwrap()
+        .split(',')
+        .map(|s| s.parse().unwrap())
+        .collect();
+    let mat = Material::identical(210e9, 0.3).unwrap();
+    for (k, p) in [(0, 50e3), (1, 40e3)] {
+        let col = |name: &str| {
+            header
+                .iter()
+                .position(|h| *h == format!("{name}_{k}"))
+                .unwrap()
+        };
+        assert_eq!(col("longitudinal_force"), col("max_pressure") + 1);
+        assert_eq!(col("adhesion_fraction"), col("max_pressure") + 3);
+        let w = 600.0 * 9.81 + p;
+        assert!((last[col("contact_force")] / w - 1.0).abs() < 1e-9);
+        let h = Hertz::elliptic(0.5 / 0.46, 0.5 / 0.3, mat.e_star, w).unwrap();
+        let c11 = creep_coefficients(h.a, h.b, 0.3).unwrap().c11;
+        let reference = -mat.g * h.a * h.b * c11 * 1e-4;
+        assert!((last[col("longitudinal_force")] / reference - 1.0).abs() < 1e-9);
+        assert_eq!(last[col("creepage")], 1e-4);
+    }
+    // The shipped braking example, shortened to 40 steps: it runs, and its FASTSIM braking force
+    // at ξ = 2e-3 lies between 0.5 and 1 × μF_n (the linear theory would exceed μF_n; the
+    // worked example in docs/vehicle_bridge.md measures 0.777 μF_n in its first step).
+    let example = include_str!("../../../examples/vehicle_bridge_braking.toml")
+        .replace("dt = 2.5e-4", "dt = 2.5e-4\nduration = 0.01");
+    let out = run(dir.path(), &example);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let fx = v["traction"]["mean_longitudinal_force"].as_f64().unwrap();
+    let fn_max = v["contact"]["max_force"].as_f64().unwrap();
+    assert_eq!(v["traction"]["method"], "fastsim");
+    assert!(fx < -0.5 * 0.3 * fn_max && fx > -0.3 * fn_max, "{fx}");
+}
