@@ -223,6 +223,15 @@ impl Traction {
             }
         }
         let radius = geometry.wheel_radius;
+        // Before the first step: free rolling, no force yet.
+        let start = TractionSample {
+            creepage: match spec.drive {
+                TractionDrive::Creepage(xi) => xi,
+                TractionDrive::Torque { .. } => 0.0,
+            },
+            angular_velocity: speed / radius,
+            ..TractionSample::default()
+        };
         Ok(Self {
             spec,
             hertz,
@@ -232,7 +241,7 @@ impl Traction {
             px,
             py,
             omega: vec![speed / radius; n],
-            samples: vec![TractionSample::default(); n],
+            samples: vec![start; n],
             sum: 0.0,
             summary: TractionSummary::default(),
         })
