@@ -174,10 +174,10 @@ fn bad_input_names_the_key() {
 /// independent RK4 (Δt = 1e-5 s) of Biggs's two-DOF model with one mode and a massless wheel:
 /// `q̈ + ω₁² q = φ(ct) k_v (z − φ(ct) q)`, `M_v z̈ = M_v g − k_v (z − φ(ct) q)`, φ the
 /// mass-normalised first mode √(2/(ρA L)) sin(πx/L), ω₁ = (π/L)²√(EI/ρA), starting from the
-/// static spring compression. The example's 1 kg wheel (its weight cancelled) adds inertia
-/// forces of ≈ 15 N against 56 kN (3e-4), so the largest midspan deflection must agree to
-/// 1e-4 (measured 7.5e-6) and the largest body acceleration to 2e-3 (measured 5e-5) (the run's contact-multiplier ringing at the
-/// wheel's entry is damped by generalized-α within a few steps). The quasi-static deflection
+/// static spring compression. The example's wheel is massless (`wheel_mass = 0`), exactly as in
+/// Biggs's model, so the only differences are the time discretisation (Δt = 1e-4 s,
+/// generalized-α): the largest midspan deflection must agree to 1e-4 (measured 9.6e-6) and the
+/// largest body acceleration to 5e-4 (measured 5e-5). The quasi-static deflection
 /// of one mode is (96/π⁴) M_v g L³/(48 EI) = 0.985545 × 2.2062 mm (dynamics.md §1.3).
 #[test]
 fn biggs_sprung_mass_example_matches_independent_two_dof_integration() {
@@ -245,6 +245,6 @@ fn biggs_sprung_mass_example_matches_independent_two_dof_integration() {
         "Biggs: w_max {w:.6e} vs RK4 {w_max:.6e}; body a_max {a:.5} vs {a_max:.5}; quasi-static {qs:.6e}"
     );
     assert!((w / w_max - 1.0).abs() < 1e-4);
-    assert!((a / a_max - 1.0).abs() < 2e-3);
+    assert!((a / a_max - 1.0).abs() < 5e-4);
     assert!((qs / (96.0 / pi.powi(4) * 2.2062e-3) - 1.0).abs() < 1e-3);
 }
