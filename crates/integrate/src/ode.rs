@@ -72,6 +72,8 @@ macro_rules! stepper_bookkeeping {
     };
 }
 
+#[macro_use]
+mod fixed_step;
 mod adams;
 mod backward_euler;
 mod bdf;

@@ -2,11 +2,9 @@
 //! Newton's method with the Jacobian evaluated once per step at `(t_n, y_n)`
 //! (Hairer–Wanner II, §IV.3; L-stable, order 1).
 
+use super::fixed_step::FixedStepState;
 use super::linalg::evaluate_jacobian;
-use super::{
-    OdeOptions, OdeStepper, OdeSystem, check_interpolation_range, check_state, hermite_interpolate,
-    limit_step, rms_norm,
-};
+use super::{OdeOptions, OdeStepper, OdeSystem, rms_norm};
 use crate::error::IntegrateError;
 use crate::lu::DenseLu;
 use crate::stats::Stats;
@@ -22,51 +20,29 @@ pub struct BackwardEuler {
     rtol: f64,
     atol: f64,
     newton_tol: f64,
-    h: f64,
-    h_cap: f64,
-    max_step: f64,
-    max_steps: usize,
-    t_stop: Option<f64>,
-    t: f64,
-    t_prev: f64,
-    y: Vec<f64>,
-    y_prev: Vec<f64>,
-    f: Vec<f64>,
-    f_prev: Vec<f64>,
+    state: FixedStepState,
     residual: Vec<f64>,
     scale: Vec<f64>,
     work: [Vec<f64>; 2],
     jac: Mat<f64>,
     lu: DenseLu<f64>,
-    stats: Stats,
 }
 
 impl BackwardEuler {
     /// Needs `options.fixed_step`; `rtol`/`atol` set the Newton stopping test.
     pub fn new(dim: usize, options: &OdeOptions) -> Result<Self, IntegrateError> {
-        options.validate()?;
+        let state = FixedStepState::new(dim, options, "backward_euler")?;
         let v = || vec![0.0; dim];
         Ok(Self {
             rtol: options.rtol,
             atol: options.atol,
             newton_tol: (10.0 * f64::EPSILON / options.rtol).max(0.03f64.min(options.rtol.sqrt())),
-            h: options.required_fixed_step("backward_euler")?,
-            h_cap: f64::INFINITY,
-            max_step: options.max_step,
-            max_steps: options.max_steps,
-            t_stop: None,
-            t: 0.0,
-            t_prev: 0.0,
-            y: v(),
-            y_prev: v(),
-            f: v(),
-            f_prev: v(),
+            state,
             residual: v(),
             scale: v(),
             work: [v(), v()],
             jac: Mat::zeros(dim, dim),
             lu: DenseLu::new(dim),
-            stats: Stats::default(),
         })
     }
 
@@ -76,18 +52,18 @@ impl BackwardEuler {
         sys: &mut dyn OdeSystem,
         h: f64,
     ) -> Result<(), IntegrateError> {
-        let n = self.y.len();
+        let n = self.state.y.len();
         let [w0, w1] = &mut self.work;
         evaluate_jacobian(
             sys,
-            self.t_prev,
-            &self.y_prev,
-            &self.f_prev,
+            self.state.t_prev,
+            &self.state.y_prev,
+            &self.state.f_prev,
             w0,
             w1,
             &mut self.jac,
         );
-        self.stats.jacobian_evals += 1;
+        self.state.stats.jacobian_evals += 1;
         {
             let mut m = self.lu.matrix_mut();
             for j in 0..n {
@@ -97,11 +73,13 @@ impl BackwardEuler {
                 m[(j, j)] += 1.0;
             }
         }
-        self.stats.lu_decompositions += 1;
+        self.state.stats.lu_decompositions += 1;
         if self.lu.factor() {
             Ok(())
         } else {
-            Err(IntegrateError::SingularMatrix { t: self.t_prev })
+            Err(IntegrateError::SingularMatrix {
+                t: self.state.t_prev,
+            })
         }
     }
 }
@@ -111,56 +89,32 @@ impl OdeStepper for BackwardEuler {
         "backward_euler"
     }
 
-    fn set_state(
-        &mut self,
-        sys: &mut dyn OdeSystem,
-        t: f64,
-        y: &[f64],
-    ) -> Result<(), IntegrateError> {
-        check_state(sys, self.y.len(), t, y)?;
-        self.t = t;
-        self.t_prev = t;
-        self.y.copy_from_slice(y);
-        self.y_prev.copy_from_slice(y);
-        sys.rhs(t, y, &mut self.f);
-        self.stats.f_evals += 1;
-        self.f_prev.copy_from_slice(&self.f);
-        Ok(())
-    }
-
     fn step(&mut self, sys: &mut dyn OdeSystem) -> Result<(), IntegrateError> {
-        if self.stats.steps >= self.max_steps {
-            return Err(IntegrateError::TooManySteps {
-                t: self.t,
-                max_steps: self.max_steps,
-            });
-        }
-        let h = limit_step(self.t, self.h, self.h_cap.min(self.max_step), self.t_stop);
-        std::mem::swap(&mut self.y, &mut self.y_prev);
-        std::mem::swap(&mut self.f, &mut self.f_prev);
-        self.t_prev = self.t;
-        let t_new = self.t_prev + h;
+        let h = self.state.next_step()?;
+        self.state.begin_step();
+        let t_new = self.state.t_prev + h;
         self.prepare_newton_matrix(sys, h)?;
-        let n = self.y.len();
+        let s = &mut self.state;
+        let n = s.y.len();
         // Explicit Euler predictor.
         for i in 0..n {
-            self.y[i] = self.y_prev[i] + h * self.f_prev[i];
-            self.scale[i] = self.atol + self.rtol * self.y_prev[i].abs();
+            s.y[i] = s.y_prev[i] + h * s.f_prev[i];
+            self.scale[i] = self.atol + self.rtol * s.y_prev[i].abs();
         }
         let mut norm_old: Option<f64> = None;
         let mut converged = false;
         let mut norm = f64::INFINITY;
         for _ in 0..MAX_NEWTON {
-            sys.rhs(t_new, &self.y, &mut self.f);
-            self.stats.f_evals += 1;
-            self.stats.newton_iterations += 1;
+            sys.rhs(t_new, &s.y, &mut s.f);
+            s.stats.f_evals += 1;
+            s.stats.newton_iterations += 1;
             // Newton: (I − hJ) Δ = −(y − y_n − h f(t_{n+1}, y)).
             for i in 0..n {
-                self.residual[i] = self.y_prev[i] + h * self.f[i] - self.y[i];
+                self.residual[i] = s.y_prev[i] + h * s.f[i] - s.y[i];
             }
             self.lu.solve_in_place(&mut self.residual);
             for i in 0..n {
-                self.y[i] += self.residual[i];
+                s.y[i] += self.residual[i];
             }
             norm = rms_norm(&self.residual, &self.scale);
             if !norm.is_finite() {
@@ -180,42 +134,13 @@ impl OdeStepper for BackwardEuler {
         }
         if !converged {
             return Err(IntegrateError::NewtonFailed {
-                t: self.t_prev,
+                t: s.t_prev,
                 iterations: MAX_NEWTON,
                 residual: norm,
             });
         }
-        self.t = t_new;
-        sys.rhs(self.t, &self.y, &mut self.f);
-        self.stats.f_evals += 1;
-        self.stats.steps += 1;
-        Ok(())
+        s.end_step(sys, h)
     }
 
-    fn t(&self) -> f64 {
-        self.t
-    }
-
-    fn y(&self) -> &[f64] {
-        &self.y
-    }
-
-    fn t_prev(&self) -> f64 {
-        self.t_prev
-    }
-
-    fn interpolate(&self, t: f64, out: &mut [f64]) -> Result<(), IntegrateError> {
-        check_interpolation_range(t, self.t_prev, self.t)?;
-        hermite_interpolate(
-            t,
-            self.t_prev,
-            self.t - self.t_prev,
-            (&self.y_prev, &self.f_prev),
-            (&self.y, &self.f),
-            out,
-        );
-        Ok(())
-    }
-
-    stepper_bookkeeping!();
+    fixed_step_accessors!();
 }
