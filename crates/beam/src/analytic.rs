@@ -1,9 +1,9 @@
-//! Analytic Euler–Bernoulli modes of uniform beams (dynamics.md §1.6).
+//! Analytic Euler–Bernoulli modes of uniform beams (references.md §D1.6).
 //!
 //! Frequencies ω_n = (β_n L)² √(EI / (ρA L⁴)). The roots β_n L of the characteristic equations are
 //! found by a bracketed, safeguarded Newton iteration on overflow-free forms of the equations and,
 //! beyond the index where the exponentially small correction drops below double precision, taken
-//! from the asymptotic formulas of dynamics.md §1.6. Mode shapes use the stable rewrite of §1.6
+//! from the asymptotic formulas of references.md §D1.6. Mode shapes use the stable rewrite of §1.6
 //! (Gonçalves, Brennan & Elliott 2007), which contains no large hyperbolic functions, and its
 //! analytic derivatives; they are mass-normalised, ∫ ρA w_i w_j dx = δ_ij.
 
@@ -37,7 +37,7 @@ impl Support {
     }
 }
 
-/// Index from which the asymptotic root is exact in double precision (dynamics.md §1.6: the
+/// Index from which the asymptotic root is exact in double precision (references.md §D1.6: the
 /// correction underflows relative to βL for n ≥ 12 (CC, FF, cantilever) and n ≥ 6 (CP)).
 fn asymptotic_from(support: Support) -> usize {
     match support {
@@ -57,7 +57,7 @@ fn leading_term(support: Support, n: usize) -> f64 {
     }
 }
 
-/// Asymptotic root (dynamics.md §1.6):
+/// Asymptotic root (references.md §D1.6):
 /// CC/FF and cantilever β_nL ≈ g_n + (−1)^(n+1) 2 e^(−g_n); clamped–pinned β_nL ≈ g_n − e^(−2 g_n).
 pub fn asymptotic_root(support: Support, n: usize) -> f64 {
     let g = leading_term(support, n);
@@ -89,7 +89,7 @@ fn characteristic(support: Support, b: f64) -> (f64, f64) {
 ///
 /// Bracket [g_n − 0.5, g_n + 0.5] around the leading term (roots are π apart, so the bracket holds
 /// exactly one), then Newton steps safeguarded by bisection until the bracket is a few ulp wide.
-/// For n beyond the threshold of dynamics.md §1.6 the asymptotic formula is returned directly.
+/// For n beyond the threshold of references.md §D1.6 the asymptotic formula is returned directly.
 pub fn characteristic_root(support: Support, n: usize) -> Result<f64, BeamError> {
     if n == 0 {
         return Err(BeamError::InvalidCount {
@@ -139,7 +139,7 @@ pub fn characteristic_root(support: Support, n: usize) -> Result<f64, BeamError>
 /// Validated properties of a uniform beam.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct UniformBeam {
-    /// Span L [m].
+    /// Span L \[m\].
     pub length: f64,
     /// Bending stiffness EI [N m²].
     pub bending_stiffness: f64,
@@ -161,7 +161,7 @@ impl UniformBeam {
         })
     }
 
-    /// ω = (βL)² √(EI / (ρA L⁴)) for a root βL (dynamics.md §1.6).
+    /// ω = (βL)² √(EI / (ρA L⁴)) for a root βL (references.md §D1.6).
     pub fn circular_frequency(&self, beta_l: f64) -> f64 {
         beta_l
             * beta_l
@@ -174,7 +174,7 @@ impl UniformBeam {
 enum ModeForm {
     /// w = amp sin(k x), k = nπ/L.
     Sine { k: f64, amp: f64 },
-    /// Stable form (dynamics.md §1.6) with ξ = x/L:
+    /// Stable form (references.md §D1.6) with ξ = x/L:
     /// φ = a e^(−βξ) + b e^(−β(1−ξ)) + t (−cos βξ + σ sin βξ), w = amp φ.
     Stable {
         beta: f64,
@@ -311,7 +311,7 @@ impl AnalyticBeam {
     }
 }
 
-/// Coefficients of the stable form for elastic mode `n` with root β = β_nL (dynamics.md §1.6):
+/// Coefficients of the stable form for elastic mode `n` with root β = β_nL (references.md §D1.6):
 /// e = e^(−β), s = sin β, c = cos β;
 /// CC, CP, FF: den = 1 − 2es − e², σ = (1 − 2ec + e²)/den, tail = (c − s − e)/den;
 /// cantilever: den = 1 + 2es − e², σ = (1 + 2ec + e²)/den, tail = (s − c − e)/den;

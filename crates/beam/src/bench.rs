@@ -11,7 +11,7 @@ use crate::fe::{EigenReduction, FeBeam, FeModes, PointSupport, Section, SupportK
 use crate::modal::{Derivative, ModalBasis};
 use crate::moving::{MovingLoadResponse, MovingLoadSettings, MovingLoads, simulate_moving_loads};
 
-/// Frýba's 25 m bridge (dynamics.md §1.3): EI = 2.87e9·2.90 N m², ρA = 2303 kg/m.
+/// Frýba's 25 m bridge (references.md §D1.3): EI = 2.87e9·2.90 N m², ρA = 2303 kg/m.
 pub fn fryba_bridge() -> Result<UniformBeam, BeamError> {
     UniformBeam::new(25.0, 2.87e9 * 2.90, 2303.0)
 }

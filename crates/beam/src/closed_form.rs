@@ -1,5 +1,5 @@
 //! Closed-form response of a simply supported beam to a moving constant force
-//! (dynamics.md §1.1; Frýba 1999 ch. 1; Olsson 1991), undamped.
+//! (references.md §D1.1; Frýba 1999 ch. 1; Olsson 1991), undamped.
 //!
 //! w(x,t) = (2PL³/(π⁴EI)) Σ_j T_j(t) sin(jπx/L) with, for 0 ≤ t ≤ L/c,
 //! T_j(t) = [sin(jΩt) − (α/j) sin(ω_j t)] / (j²(j² − α²)), Ω = πc/L, ω_j = j²ω₁, α = Ω/ω₁.
@@ -75,7 +75,7 @@ impl SsMovingForce {
         (value, rate)
     }
 
-    /// Series deflection w(x, t) [m] with `n_terms` modes, for any t ≥ 0.
+    /// Series deflection w(x, t) \[m\] with `n_terms` modes, for any t ≥ 0.
     pub fn deflection(&self, x: f64, t: f64, n_terms: usize) -> Result<f64, BeamError> {
         crate::error::inside_span("x", x, self.beam.length)?;
         non_negative("t", t)?;

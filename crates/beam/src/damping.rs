@@ -21,7 +21,7 @@ pub enum ModalDamping {
     Rayleigh {
         /// Mass-proportional coefficient α [1/s].
         mass_coefficient: f64,
-        /// Stiffness-proportional coefficient β [s].
+        /// Stiffness-proportional coefficient β \[s\].
         stiffness_coefficient: f64,
     },
 }

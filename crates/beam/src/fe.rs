@@ -28,7 +28,7 @@ use crate::modal::{Derivative, ModalBasis, check_len, check_mode};
 /// A beam segment with constant section properties; segments follow each other from x = 0.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Section {
-    /// Segment length [m].
+    /// Segment length \[m\].
     pub length: f64,
     /// Bending stiffness EI [N m²].
     pub bending_stiffness: f64,
@@ -55,7 +55,7 @@ pub enum SupportKind {
 /// A support at position `x` (a node is placed there).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PointSupport {
-    /// Position [m].
+    /// Position \[m\].
     pub x: f64,
     /// Support kind.
     pub kind: SupportKind,
@@ -64,9 +64,9 @@ pub struct PointSupport {
 /// A lumped mass at position `x` (a node is placed there).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PointMass {
-    /// Position [m].
+    /// Position \[m\].
     pub x: f64,
-    /// Mass [kg].
+    /// Mass \[kg\].
     pub mass: f64,
     /// Rotary inertia [kg m²].
     pub rotary_inertia: f64,

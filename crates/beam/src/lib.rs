@@ -9,12 +9,12 @@
 //! * [`moving`]: moving forces and axle trains, time histories and amplification factors;
 //! * [`closed_form`]: Frýba's series for a moving force on a simply supported beam;
 //! * [`sdof`]: the exact piecewise-linear (Nigam–Jennings-type) modal step;
-//! * [`bench`]: fixed workloads for the benchmark driver.
+//! * [`bench`](mod@bench): fixed workloads for the benchmark driver.
 //!
 //! ```
 //! use beam::{AnalyticBeam, ModalBasis, ModalDamping, MovingLoadSettings, MovingLoads, Support, UniformBeam};
 //!
-//! // Frýba's 25 m bridge (dynamics.md §1.3) and a 56.4 kN force at 27.78 m/s.
+//! // Frýba's 25 m bridge (references.md §D1.3) and a 56.4 kN force at 27.78 m/s.
 //! let bridge = UniformBeam::new(25.0, 2.87e9 * 2.90, 2303.0)?;
 //! let modes = AnalyticBeam::new(Support::SimplySupported, bridge, 10)?;
 //! assert!((modes.circular_frequencies()[0] - 30.02).abs() < 0.01);

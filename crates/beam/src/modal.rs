@@ -1,6 +1,6 @@
 //! The modal-basis abstraction shared by analytic and finite-element beams.
 //!
-//! A modal basis represents the displacement as u(x, t) = Σ_j q_j(t) w_j(x) (dynamics.md §1.1,
+//! A modal basis represents the displacement as u(x, t) = Σ_j q_j(t) w_j(x) (references.md §D1.1,
 //! the seed talk's "Modal analysis" slides). The shapes are mass-normalised,
 //! ∫ ρA w_i w_j dx (+ Σ point masses) = δ_ij, so each modal equation reads
 //! q_j'' + 2ζ_j ω_j q_j' + ω_j² q_j = f_j(t) with f_j = ∫ p w_j dx.
@@ -28,7 +28,7 @@ pub trait ModalBasis {
     /// Number of modes in the basis (rigid-body modes included).
     fn n_modes(&self) -> usize;
 
-    /// Span length L [m].
+    /// Span length L \[m\].
     fn length(&self) -> f64;
 
     /// Circular frequencies ω_j [rad/s], non-decreasing; 0 for rigid-body modes.

@@ -8,7 +8,7 @@
 //! error is the linear interpolation of f_j (O(Δt²)). Alternatively the modal system
 //! M q'' + C q' + K q = f (diagonal M = diag(m_j), C = diag(m_j c_j), K = diag(m_j ω_j²)) is
 //! integrated by a [`StructuralMethod`] of the `integrate` crate (Newmark-β, HHT-α,
-//! generalized-α, ...), which adds that method's period and amplitude errors (dynamics.md §3.5).
+//! generalized-α, ...), which adds that method's period and amplitude errors (references.md §D3.5).
 //! The run lasts until the last axle leaves the span plus a free-vibration time. Loads and
 //! deflections are positive in the same direction.
 
@@ -23,9 +23,9 @@ use crate::sdof::PiecewiseLinearSdof;
 /// One axle of a moving load train.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Axle {
-    /// Distance behind the first axle [m] (≥ 0).
+    /// Distance behind the first axle \[m\] (≥ 0).
     pub offset: f64,
-    /// Force [N], positive in the deflection direction.
+    /// Force \[N\], positive in the deflection direction.
     pub force: f64,
 }
 
@@ -90,9 +90,9 @@ pub enum ModalIntegrator {
 /// Settings of a moving-load run.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MovingLoadSettings {
-    /// Time step Δt [s].
+    /// Time step Δt \[s\].
     pub dt: f64,
-    /// Free-vibration time simulated after the last axle has left [s].
+    /// Free-vibration time simulated after the last axle has left \[s\].
     pub free_vibration_time: f64,
     /// Record every `output_every`-th step (≥ 1); the final step is always recorded.
     pub output_every: usize,
@@ -116,11 +116,11 @@ impl MovingLoadSettings {
 /// sample i at point p.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MovingLoadResponse {
-    /// Output positions x_p [m].
+    /// Output positions x_p \[m\].
     pub points: Vec<f64>,
-    /// Sample times [s].
+    /// Sample times \[s\].
     pub times: Vec<f64>,
-    /// Deflection w(x_p, t) [m].
+    /// Deflection w(x_p, t) \[m\].
     pub deflection: Vec<f64>,
     /// Velocity ẇ(x_p, t) [m/s].
     pub velocity: Vec<f64>,
@@ -128,9 +128,9 @@ pub struct MovingLoadResponse {
     pub acceleration: Vec<f64>,
     /// Bending moment M = −EI(x_p) Σ q_j w_j''(x_p) [N m].
     pub bending_moment: Vec<f64>,
-    /// Quasi-static deflection Σ (f_j/ω_j²) w_j(x_p) from the same modal basis [m].
+    /// Quasi-static deflection Σ (f_j/ω_j²) w_j(x_p) from the same modal basis \[m\].
     pub quasi_static_deflection: Vec<f64>,
-    /// Time at which the last axle left the span [s].
+    /// Time at which the last axle left the span \[s\].
     pub exit_time: f64,
 }
 

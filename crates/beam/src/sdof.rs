@@ -9,7 +9,7 @@
 //! the recurrence of Nigam & Jennings (*BSSA* 59(2):909–922, 1969). Instead of their closed-form
 //! coefficients (which cancel catastrophically for ω h ≪ 1 and are singular at ω = 0 or ζ = 1),
 //! the coefficients are read off the exponential of the augmented matrix of the system
-//! y = (q, q', f, f'), y' = [[0,1,0,0],[−ω²,−c,1,0],[0,0,0,1],[0,0,0,0]] y, which is exact for any
+//! y = (q, q', f, f'), y' = [\[0,1,0,0\],[−ω²,−c,1,0],\[0,0,0,1\],\[0,0,0,0\]] y, which is exact for any
 //! ω ≥ 0 and c ≥ 0 (under-, critically and over-damped, rigid modes). The exponential is computed
 //! once per mode by scaling and squaring of a Taylor series on a balanced (dimensionless) matrix.
 

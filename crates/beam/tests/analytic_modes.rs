@@ -1,4 +1,4 @@
-//! Analytic modes against dynamics.md §1.6 (roots to 20 digits, (βL)² coefficients, normalisation
+//! Analytic modes against references.md §D1.6 (roots to 20 digits, (βL)² coefficients, normalisation
 //! facts), the textbook cosh/cos forms, the boundary conditions, the beam ODE and orthonormality.
 
 // The reference roots are quoted with all 20 digits of the source table on purpose.
@@ -9,7 +9,7 @@ use beam::{
     UniformBeam,
 };
 
-/// dynamics.md §1.6 table (mpmath, 30 digits), n = 1..8.
+/// references.md §D1.6 table (mpmath, 30 digits), n = 1..8.
 const CC_FF: [f64; 8] = [
     4.7300407448627040260,
     7.8532046240958375565,
@@ -49,7 +49,7 @@ const ALL: [Support; 5] = [
     Support::FreeFree,
 ];
 
-/// Frýba's example bridge (dynamics.md §1.3): L = 25 m, EI = 2.87e9 · 2.90, ρA = 2303 kg/m.
+/// Frýba's example bridge (references.md §D1.3): L = 25 m, EI = 2.87e9 · 2.90, ρA = 2303 kg/m.
 fn fryba() -> UniformBeam {
     UniformBeam::new(25.0, 2.87e9 * 2.90, 2303.0).unwrap()
 }
@@ -121,7 +121,7 @@ fn asymptotic_roots_agree_near_the_switch() {
     }
 }
 
-/// (βL)² coefficients of dynamics.md §1.6 (given to 12 significant digits → 1e-11 relative).
+/// (βL)² coefficients of references.md §D1.6 (given to 12 significant digits → 1e-11 relative).
 #[test]
 fn frequency_coefficients() {
     let table: [(Support, [f64; 3]); 4] = [
@@ -150,7 +150,7 @@ fn frequency_coefficients() {
             assert!(((w - c) / c).abs() < 1e-11, "{support:?}: {w} vs {c}");
         }
     }
-    // Frýba bridge, SS: ω₁ = 30.020 rad/s (dynamics.md §1.3, 5 digits).
+    // Frýba bridge, SS: ω₁ = 30.020 rad/s (references.md §D1.3, 5 digits).
     let ss = AnalyticBeam::new(Support::SimplySupported, fryba(), 1).unwrap();
     assert!((ss.circular_frequencies()[0] - 30.020).abs() < 5e-3);
 }
@@ -205,7 +205,7 @@ fn modes_are_orthonormal_up_to_100() {
     }
 }
 
-/// Textbook shapes (dynamics.md §1.6) with cosh/sinh, unnormalised.
+/// Textbook shapes (references.md §D1.6) with cosh/sinh, unnormalised.
 fn textbook(support: Support, beta: f64, xi: f64) -> f64 {
     let (ch, sh, c, s) = (
         (beta * xi).cosh(),
@@ -225,7 +225,7 @@ fn textbook(support: Support, beta: f64, xi: f64) -> f64 {
     }
 }
 
-/// For n ≤ 5 the textbook form is still accurate (max error 1.5e-9 at n = 5, dynamics.md §1.6), so
+/// For n ≤ 5 the textbook form is still accurate (max error 1.5e-9 at n = 5, references.md §D1.6), so
 /// the stable form must agree with it to 1e-8 (absolute, unnormalised shapes of size O(1)).
 #[test]
 fn stable_shapes_agree_with_textbook_for_low_modes() {
@@ -307,7 +307,7 @@ fn boundary_conditions_hold_up_to_mode_200() {
     }
 }
 
-/// Normalisation facts of dynamics.md §1.6: cantilever tip φ(L) = 2(−1)^(n+1) and CC mode-1
+/// Normalisation facts of references.md §D1.6: cantilever tip φ(L) = 2(−1)^(n+1) and CC mode-1
 /// midspan φ₁(L/2) = 1.5881462621 (10 digits → 1e-9), for the unnormalised φ = √(ρA L) w.
 #[test]
 fn normalisation_facts() {

@@ -131,7 +131,7 @@ fn fe_shapes_match_analytic_shapes() {
 
 /// Two equal spans, pinned at 0, L, 2L (continuous beam): mode 1 is antisymmetric with the
 /// simply supported span frequency (βL = π); mode 2 is symmetric, each span clamped–pinned
-/// (βL = 3.9266023120479, dynamics.md §1.6). 40 elements per span: O(h⁴) error ≈ 1e-8; tolerance 1e-6.
+/// (βL = 3.9266023120479, references.md §D1.6). 40 elements per span: O(h⁴) error ≈ 1e-8; tolerance 1e-6.
 #[test]
 fn two_span_continuous_beam() {
     let supports = [

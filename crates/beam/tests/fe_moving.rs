@@ -24,7 +24,7 @@ fn section(length: f64) -> Vec<Section> {
 }
 
 /// FE modes (60 elements, 20 modes) in the moving-load simulation reproduce the undamped table
-/// value 1.7054 at α = 0.5 (dynamics.md §1.1) to 2e-4: table rounding 5e-5, 20-mode truncation
+/// value 1.7054 at α = 0.5 (references.md §D1.1) to 2e-4: table rounding 5e-5, 20-mode truncation
 /// ≈ 1.2e-5, FE frequency error of mode 1 ≈ 1e-9.
 #[test]
 fn fe_basis_reproduces_the_table() {

@@ -1,5 +1,5 @@
 //! Moving force on a simply supported beam: the modal simulation against Frýba's closed-form
-//! series and the undamped reference table of dynamics.md §1.1, the crawling-speed static limit,
+//! series and the undamped reference table of references.md §D1.1, the crawling-speed static limit,
 //! and axle trains against the superposed closed form.
 
 use std::f64::consts::PI;
@@ -10,7 +10,7 @@ use beam::{
     UniformBeam, simulate_moving_loads,
 };
 
-/// Frýba's example (dynamics.md §1.3): L = 25 m, EI = 2.87e9·2.90 N m², ρA = 2303 kg/m, F = 56.4 kN.
+/// Frýba's example (references.md §D1.3): L = 25 m, EI = 2.87e9·2.90 N m², ρA = 2303 kg/m, F = 56.4 kN.
 fn fryba() -> UniformBeam {
     UniformBeam::new(25.0, 2.87e9 * 2.90, 2303.0).unwrap()
 }
@@ -71,7 +71,7 @@ fn closed_form_series_reproduces_the_table() {
             );
         }
     }
-    // α = 1: the maximum is reached at t = L/c and equals 48/π³ (dynamics.md §1.1); with the
+    // α = 1: the maximum is reached at t = L/c and equals 48/π³ (references.md §D1.1); with the
     // resonance-safe form the single-mode value at exit is (96/π⁴)·π/2 exactly: check the series
     // at L/c against 48/π³ to the truncation of the other modes (< 1e-4).
     let c = speed_for_parameter(&beam, 1.0).unwrap();
@@ -149,7 +149,7 @@ fn modal_simulation_reproduces_the_table_and_the_series() {
 }
 
 /// Crawling speed (α = 1e-3): the dynamic maximum tends to δ_st = FL³/(48EI) with a dynamic excess
-/// ≈ α (dynamics.md §1.1 table: 1.0482 at α = 0.05), so tolerance 2e-3; the quasi-static maximum
+/// ≈ α (references.md §D1.1 table: 1.0482 at α = 0.05), so tolerance 2e-3; the quasi-static maximum
 /// from 50 modes differs from δ_st by the modal truncation Σ_(j>50) 96/(π⁴j⁴) ≈ 3e-6 (tolerance
 /// 1e-5); the midspan bending moment tends to FL/4, converging like 1/j² (truncation
 /// (8/π²)Σ_(j>50, odd) 1/j² ≈ 8e-3, tolerance 1.5e-2).
@@ -308,7 +308,7 @@ fn absurd_time_step_is_rejected() {
     );
 }
 
-/// Yang–Yau–Hsu cancellation (dynamics.md §1.1): for equally spaced axles (spacing d) at the
+/// Yang–Yau–Hsu cancellation (references.md §D1.1): for equally spaced axles (spacing d) at the
 /// mode-1 resonance speed v = f₁ d, the free vibration left by each axle vanishes when
 /// L/d = k + ½. A 10-axle train at resonance: with L/d = 1.5 the residual free vibration of
 /// the midspan must be below 5 % of that with L/d = 2 (where each axle leaves ≈ 0.52 δ_st, table

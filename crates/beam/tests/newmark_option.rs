@@ -38,7 +38,7 @@ fn newmark_error(steps_per_period: f64, modes: usize) -> (f64, f64) {
     (err / d_st, r.max_abs_deflection(0).unwrap() / d_st)
 }
 
-/// Newmark average acceleration is second order (dynamics.md §3.5): the observed order of the
+/// Newmark average acceleration is second order (references.md §D3.5): the observed order of the
 /// maximum deviation from the series between Δt = T₁/400 and T₁/800 must be 2 ± 0.3, measured
 /// with 3 modes so that every ω_jΔt ≤ 0.14 is in the asymptotic range. At
 /// Δt = T₁/4000 the passage maximum reproduces the table value 1.7054 (α = 0.5) to 2e-4 (table

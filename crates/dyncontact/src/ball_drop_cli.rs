@@ -21,7 +21,7 @@ use crate::{output, plot};
 #[serde(deny_unknown_fields)]
 struct Scenario {
     kind: String,
-    /// Simulated time [s] (default 1.0).
+    /// Simulated time \[s\] (default 1.0).
     duration: Option<f64>,
     /// Gravitational acceleration [m/s²] (default 9.81).
     gravity: Option<f64>,

@@ -9,7 +9,7 @@ use halfspace::{
     SolverOptions, TangentialOptions, TangentialSolver, fastsim,
 };
 
-/// The tractcurv ellipse of contact.md §4.1 (A = 0.8 /m, a/b = 0.5, F_n = 106.7 kN,
+/// The tractcurv ellipse of references.md §C4.1 (A = 0.8 /m, a/b = 0.5, F_n = 106.7 kN,
 /// G = 82 GPa, ν = 0.28), μ = 0.3, on 44 × 44 elements over 1.05 × the ellipse.
 pub fn tangential() -> Result<()> {
     let m = Material::from_combined(82e9, 0.28).map_err(|e| anyhow!("{e}"))?;

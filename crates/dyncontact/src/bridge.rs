@@ -13,12 +13,12 @@ use serde::Deserialize;
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct BridgeSpec {
-    /// Span length [m] (FE: defaults to the sum of the section lengths).
+    /// Span length \[m\] (FE: defaults to the sum of the section lengths).
     pub length: Option<f64>,
     /// Bending stiffness EI [N m²] ...
     #[serde(rename = "EI")]
     pub ei: Option<f64>,
-    /// ... or Young's modulus E [Pa] and second moment of area I [m⁴].
+    /// ... or Young's modulus E \[Pa\] and second moment of area I \[m⁴\].
     #[serde(rename = "E")]
     pub e: Option<f64>,
     #[serde(rename = "I")]
@@ -37,9 +37,9 @@ pub struct BridgeSpec {
     pub rayleigh: Option<[f64; 2]>,
     /// FE model: number of elements (selects the finite-element beam).
     pub elements: Option<usize>,
-    /// FE model: positions of pinned supports [m].
+    /// FE model: positions of pinned supports \[m\].
     pub supports_at: Option<Vec<f64>>,
-    /// FE model: positions of clamped supports [m].
+    /// FE model: positions of clamped supports \[m\].
     pub clamped_at: Option<Vec<f64>>,
     /// FE model: sections from x = 0 (default: one uniform section).
     pub sections: Option<Vec<SectionSpec>>,

@@ -1,7 +1,7 @@
 //! `dyncontact contact CASE.toml`: the quasi-static normal contact problem from a case file.
 //!
 //! Every key is in SI units; unknown keys are errors. See the README for the schema, and
-//! docs/tangential.md for the [friction] and [kinematics] sections (tangential contact).
+//! docs/tangential.md for the \[friction\] and \[kinematics\] sections (tangential contact).
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -31,7 +31,7 @@ pub struct ContactCase {
     pub grid: Option<GridSpec>,
     pub load: LoadSpec,
     pub solver: Option<SolverSpec>,
-    /// Coulomb friction (needed by [kinematics]).
+    /// Coulomb friction (needed by \[kinematics\]).
     pub friction: Option<FrictionSpec>,
     /// Tangential problem: rolling or shift (see docs/tangential.md).
     pub kinematics: Option<KinematicsSpec>,
@@ -52,10 +52,10 @@ pub struct KinematicsSpec {
     pub creepage_y: Option<f64>,
     /// Spin [1/m].
     pub spin: Option<f64>,
-    /// Rigid shift [m] (shift problem).
+    /// Rigid shift \[m\] (shift problem).
     pub shift_x: Option<f64>,
     pub shift_y: Option<f64>,
-    /// Prescribed tangential forces [N].
+    /// Prescribed tangential forces \[N\].
     pub force_x: Option<f64>,
     pub force_y: Option<f64>,
     /// "exact" (default), "fastsim" or "linear".
@@ -90,7 +90,7 @@ pub enum TangentialTask {
     Shift(ShiftLoad),
 }
 
-/// A validated [friction] + [kinematics] pair.
+/// A validated \[friction\] + \[kinematics\] pair.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TangentialCase {
     pub mu: f64,
@@ -165,9 +165,9 @@ pub struct PreparedCase {
     pub gap: Vec<f64>,
     pub load: NormalLoad,
     pub options: SolverOptions,
-    /// Friction coefficient, when [friction] is given.
+    /// Friction coefficient, when \[friction\] is given.
     pub mu: Option<f64>,
-    /// The tangential problem, when [kinematics] is given.
+    /// The tangential problem, when \[kinematics\] is given.
     pub tangential: Option<TangentialCase>,
 }
 
@@ -178,7 +178,7 @@ fn finite_key(section: &str, key: &str, value: Option<f64>) -> Result<Option<f64
     }
 }
 
-/// Validate [friction] and [kinematics].
+/// Validate \[friction\] and \[kinematics\].
 fn tangential_case(
     friction: Option<&FrictionSpec>,
     kin: Option<&KinematicsSpec>,
@@ -335,7 +335,7 @@ fn load(spec: &LoadSpec) -> Result<NormalLoad> {
     }
 }
 
-/// Reject keys of [gap] that its kind does not use.
+/// Reject keys of \[gap\] that its kind does not use.
 fn only_keys(spec: &GapSpec, allowed: &[&str]) -> Result<()> {
     let present = [
         ("A", spec.a.is_some()),
@@ -431,7 +431,7 @@ fn shape(spec: &GapSpec, grid: Option<&Grid>, base: &Path) -> Result<GapShape> {
     Ok(shape)
 }
 
-/// A tabulated gap: a CSV of `ny` lines of `nx` values [m]; line k is row iy = k (lowest y
+/// A tabulated gap: a CSV of `ny` lines of `nx` values \[m\]; line k is row iy = k (lowest y
 /// first). Lines starting with `#` are comments.
 fn read_table(path: &Path, grid: &Grid) -> Result<Vec<f64>> {
     let text = std::fs::read_to_string(path)
@@ -586,7 +586,7 @@ pub struct ContactSummary {
     pub hertz: Option<HertzSummary>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub hertz_line: Option<LineHertzSummary>,
-    /// Tangential results (top-level keys), when [kinematics] is given.
+    /// Tangential results (top-level keys), when \[kinematics\] is given.
     #[serde(flatten, skip_serializing_if = "Option::is_none")]
     pub tangential: Option<TangentialSummary>,
 }
@@ -610,12 +610,12 @@ pub struct TangentialSummary {
     pub creepage_y: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub spin: Option<f64>,
-    /// Shift: rigid shift used or found [m].
+    /// Shift: rigid shift used or found \[m\].
     #[serde(skip_serializing_if = "Option::is_none")]
     pub shift_x: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub shift_y: Option<f64>,
-    /// Rolling: frictional power per unit rolling speed [N] (× V gives W); shift: work [J].
+    /// Rolling: frictional power per unit rolling speed \[N\] (× V gives W); shift: work \[J\].
     pub frictional_power: Option<f64>,
     pub tangential_iterations: Option<usize>,
     pub newton_iterations: Option<usize>,
@@ -665,11 +665,11 @@ pub struct LineHertzSummary {
 pub struct CaseOutcome {
     pub summary: ContactSummary,
     pub solution: NormalSolution,
-    /// The exact tangential solution, when [kinematics] with method = "exact" is given.
+    /// The exact tangential solution, when \[kinematics\] with method = "exact" is given.
     pub tangential: Option<TangentialSolution>,
 }
 
-/// The Hertz ellipse (a, b) [m] of the case's quadratic gap at normal force `fn_`.
+/// The Hertz ellipse (a, b) \[m\] of the case's quadratic gap at normal force `fn_`.
 pub fn hertz_axes(case: &PreparedCase, fn_: f64) -> Result<(f64, f64)> {
     let h = case
         .shape

@@ -53,7 +53,7 @@ pub fn parse_range(spec: &str, flag: &str) -> Result<Vec<f64>> {
         .collect())
 }
 
-/// One point of the curve (forces on body 1 [N], moment [N m]).
+/// One point of the curve (forces on body 1 \[N\], moment [N m]).
 #[derive(Debug, Serialize)]
 pub struct CurvePoint {
     pub creepage_x: f64,
@@ -78,7 +78,7 @@ pub struct CreepCurve {
     pub variable: String,
     pub mu: f64,
     pub normal_force: f64,
-    /// Hertz semi-axes used by FASTSIM and the linear theory [m] (null for non-Hertzian gaps).
+    /// Hertz semi-axes used by FASTSIM and the linear theory \[m\] (null for non-Hertzian gaps).
     pub hertz_a: Option<f64>,
     pub hertz_b: Option<f64>,
     pub grid_nx: usize,

@@ -79,9 +79,9 @@ enum Command {
         out: Option<PathBuf>,
     },
     /// Creep force against creepage in steady rolling: exact, FASTSIM and linear theory
-    /// (a contact case with [friction]; see docs/tangential.md).
+    /// (a contact case with \[friction\]; see docs/tangential.md).
     CreepCurve {
-        /// Case file (TOML) with [friction] mu.
+        /// Case file (TOML) with \[friction\] mu.
         file: PathBuf,
         /// Sweep the longitudinal creepage: start:stop:count.
         #[arg(long)]

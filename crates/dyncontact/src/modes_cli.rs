@@ -17,7 +17,7 @@ pub struct ModeRow {
     pub beta_l: f64,
     /// Circular frequency ω_n [rad/s].
     pub omega: f64,
-    /// Frequency f_n = ω_n/(2π) [Hz].
+    /// Frequency f_n = ω_n/(2π) \[Hz\].
     pub frequency: f64,
 }
 

@@ -1,5 +1,5 @@
 //! `dyncontact run FILE` with `kind = "moving_load"`: a force or a train of axle forces crossing
-//! the bridge at constant speed (modal superposition; Frýba's problem, dynamics.md §1.1).
+//! the bridge at constant speed (modal superposition; Frýba's problem, references.md §D1.1).
 
 use std::path::Path;
 use std::time::Instant;
@@ -25,7 +25,7 @@ struct MovingLoadScenario {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct LoadSpec {
-    /// One force [N] ...
+    /// One force \[N\] ...
     force: Option<f64>,
     /// ... or axles [[offset behind the first axle (m), force (N)], ...].
     axles: Option<Vec<[f64; 2]>>,
@@ -39,7 +39,7 @@ struct IntegratorSpec {
     /// "exact" (default: exact modal step for piecewise-linear forcing) or a structural method:
     /// newmark, hht, generalized_alpha, backward_euler, verlet, leapfrog, central_difference, ...
     method: Option<String>,
-    /// Time step [s] (default 1e-4).
+    /// Time step \[s\] (default 1e-4).
     dt: Option<f64>,
     beta: Option<f64>,
     gamma: Option<f64>,
@@ -50,9 +50,9 @@ struct IntegratorSpec {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct OutputSpec {
-    /// Extra response points [m] (midspan is always the first).
+    /// Extra response points \[m\] (midspan is always the first).
     points: Option<Vec<f64>>,
-    /// Free vibration simulated after the last axle leaves [s] (default: 3 periods of mode 1, at most 5 s).
+    /// Free vibration simulated after the last axle leaves \[s\] (default: 3 periods of mode 1, at most 5 s).
     free_vibration: Option<f64>,
     /// Record every n-th step (default: about 20 000 samples in all).
     every: Option<usize>,

@@ -191,7 +191,7 @@ pub struct CouplingToml {
 pub struct OutputSpec {
     /// Record every n-th step.
     pub every: Option<usize>,
-    /// Output point of the bridge response [m] (default midspan).
+    /// Output point of the bridge response \[m\] (default midspan).
     pub point: Option<f64>,
     /// Number of pressure snapshots along the passage.
     pub snapshots: Option<usize>,
@@ -345,7 +345,7 @@ fn irregularity(spec: &IrregularitySpec, wheel_radius: f64) -> Result<Irregulari
         },
         "wheel_flat" => {
             let length = need(spec.length, "length", k)?;
-            // A fresh flat of chord ℓ has depth ℓ²/(8R) (dynamics.md §2.5) unless given.
+            // A fresh flat of chord ℓ has depth ℓ²/(8R) (references.md §D2.5) unless given.
             let depth = spec.depth.unwrap_or(length * length / (8.0 * wheel_radius));
             Irregularity::WheelFlat {
                 position: spec.position.unwrap_or(0.0),
@@ -400,9 +400,9 @@ struct Row {
 pub struct TractionSummaryJson {
     pub method: String,
     pub mu: f64,
-    /// Largest |F_x| (signed) over all wheels and steps [N].
+    /// Largest |F_x| (signed) over all wheels and steps \[N\].
     pub max_longitudinal_force: f64,
-    /// Mean F_x over wheel-steps in contact [N].
+    /// Mean F_x over wheel-steps in contact \[N\].
     pub mean_longitudinal_force: f64,
     /// Wheel-steps in full slip.
     pub saturated_steps: usize,

@@ -1,6 +1,6 @@
 //! `dyncontact modes` and `run` with `kind = "moving_load"`, end to end, against closed forms.
 
-// Reference roots are copied verbatim (20 digits) from dynamics.md §1.6.
+// Reference roots are copied verbatim (20 digits) from references.md §D1.6.
 #![allow(clippy::excessive_precision)]
 
 use std::path::Path;
@@ -58,7 +58,7 @@ fn simply_supported_modes_match_the_closed_form() {
                 < 1e-12
         );
     }
-    // Clamped–clamped first root (dynamics.md §1.6).
+    // Clamped–clamped first root (references.md §D1.6).
     let cc = BRIDGE.replace("simply_supported", "clamped_clamped");
     let v = json(&dyncontact(&[
         "modes",
@@ -74,7 +74,7 @@ fn simply_supported_modes_match_the_closed_form() {
 fn two_span_fe_bridge_has_the_single_span_frequency() {
     // A continuous beam over two equal spans: mode 1 is the simply supported mode of one span
     // (the middle support is a node of the antisymmetric mode); mode 2 the clamped–pinned span
-    // mode, βL = 3.9266 per span (dynamics.md §1.6).
+    // mode, βL = 3.9266 per span (references.md §D1.6).
     let dir = tempfile::tempdir().unwrap();
     let text = r#"
 [bridge]
@@ -110,7 +110,7 @@ supports_at = [0.0, 20.0, 40.0]
 
 #[test]
 fn moving_force_reproduces_frybas_table() {
-    // Undamped, α = c/(2 f₁ L) = 0.5: max midspan deflection 1.7054 δ_st (dynamics.md §1.1).
+    // Undamped, α = c/(2 f₁ L) = 0.5: max midspan deflection 1.7054 δ_st (references.md §D1.1).
     let dir = tempfile::tempdir().unwrap();
     let f1 = (std::f64::consts::PI / 25.0).powi(2) * (8.323e9_f64 / 2303.0).sqrt()
         / (2.0 * std::f64::consts::PI);

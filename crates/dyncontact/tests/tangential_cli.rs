@@ -108,7 +108,7 @@ mu = 0.3
 fn methods_and_forces_through_the_cli() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    // Linear theory at ξ = 1e-5: |F_x| = G c² C11 ξ = 243.3 N (contact.md §4.2, 4 digits).
+    // Linear theory at ξ = 1e-5: |F_x| = G c² C11 ξ = 243.3 N (references.md §C4.2, 4 digits).
     let lin = write_case(
         d,
         "lin.toml",

@@ -170,7 +170,7 @@ fn bad_input_names_the_key() {
     assert!(e.contains("wheels"), "{e}");
 }
 
-/// The sprung-mass benchmark (dynamics.md §1.3, examples/vehicle_bridge_biggs.toml) against an
+/// The sprung-mass benchmark (references.md §D1.3, examples/vehicle_bridge_biggs.toml) against an
 /// independent RK4 (Δt = 1e-5 s) of Biggs's two-DOF model with one mode and a massless wheel:
 /// `q̈ + ω₁² q = φ(ct) k_v (z − φ(ct) q)`, `M_v z̈ = M_v g − k_v (z − φ(ct) q)`, φ the
 /// mass-normalised first mode √(2/(ρA L)) sin(πx/L), ω₁ = (π/L)²√(EI/ρA), starting from the
@@ -178,7 +178,7 @@ fn bad_input_names_the_key() {
 /// Biggs's model, so the only differences are the time discretisation (Δt = 1e-4 s,
 /// generalized-α): the largest midspan deflection must agree to 1e-4 (measured 9.6e-6) and the
 /// largest body acceleration to 5e-4 (measured 5e-5). The quasi-static deflection
-/// of one mode is (96/π⁴) M_v g L³/(48 EI) = 0.985545 × 2.2062 mm (dynamics.md §1.3).
+/// of one mode is (96/π⁴) M_v g L³/(48 EI) = 0.985545 × 2.2062 mm (references.md §D1.3).
 #[test]
 fn biggs_sprung_mass_example_matches_independent_two_dof_integration() {
     let dir = tempfile::tempdir().unwrap();

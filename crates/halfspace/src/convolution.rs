@@ -3,7 +3,7 @@
 //! For an `nx × ny` grid the influence matrix depends only on element offsets, so
 //! `u = A p` is a 2D linear convolution. Embedding it in a periodic `2nx × 2ny` problem and
 //! zero-padding p makes the circular FFT convolution exact (the DC-FFT idea, Liu, Wang & Liu
-//! 2000; CONTACT does the same, contact.md §3.3):
+//! 2000; CONTACT does the same, references.md §C3.3):
 //!
 //! 1. real-to-complex FFT of each of the `ny` non-zero padded rows (length 2nx);
 //! 2. complex FFT of each of the `nx + 1` spectral columns (length 2ny);
@@ -37,7 +37,7 @@ pub struct KernelSpectrum {
 
 impl KernelSpectrum {
     /// The spectrum of the inverse kernel (element-wise reciprocal): applied as a
-    /// convolution it approximates A⁻¹ (Vollebregt's FFT preconditioner, contact.md §3.4).
+    /// convolution it approximates A⁻¹ (Vollebregt's FFT preconditioner, references.md §C3.4).
     /// `None` if a Fourier coefficient vanishes.
     pub fn reciprocal(&self, scale: f64) -> Option<KernelSpectrum> {
         let mut values = Vec::with_capacity(self.values.len());

@@ -2,7 +2,7 @@
 //!
 //! With K ≠ 0 the normal pressure displaces the surfaces tangentially (A_tn p_n) and the
 //! tangential tractions displace them normally (u_n = A_nx p_x + A_ny p_y, A_nx = −A_xn;
-//! contact.md §3.1–3.2). CONTACT alternates a normal solve with the gap h + u_n(p_t) and a
+//! references.md §C3.1–3.2). CONTACT alternates a normal solve with the gap h + u_n(p_t) and a
 //! tangential solve for the new pressure until neither changes (MAXOUT ≈ 20). For K = 0 one
 //! pass is exact (Johnson's process).
 //!
@@ -50,7 +50,7 @@ pub struct CoupledSolution {
     pub tangential: TangentialSolution,
     /// Outer iterations (1 for K = 0).
     pub outer_iterations: usize,
-    /// The gap the last normal solve used, h + u_n(p_t) [m].
+    /// The gap the last normal solve used, h + u_n(p_t) \[m\].
     pub effective_gap: Vec<f64>,
 }
 

@@ -1,5 +1,5 @@
 //! FASTSIM: Kalker's simplified theory of steady rolling (Kalker, Vehicle System Dynamics 11
-//! (1982) 1–13; contact.md §3.6).
+//! (1982) 1–13; references.md §C3.6).
 //!
 //! The half-space is replaced by a Winkler bed, u = L p, with three flexibilities taken from
 //! the linear theory so that FASTSIM reproduces it at vanishing creepage:
@@ -30,17 +30,17 @@ use crate::linear_theory::creep_coefficients;
 /// Input of a FASTSIM computation (SI units).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FastsimInput {
-    /// Semi-axis along the rolling direction x [m].
+    /// Semi-axis along the rolling direction x \[m\].
     pub a: f64,
-    /// Lateral semi-axis [m].
+    /// Lateral semi-axis \[m\].
     pub b: f64,
-    /// Combined shear modulus G [Pa].
+    /// Combined shear modulus G \[Pa\].
     pub g: f64,
     /// Combined Poisson's ratio ν.
     pub nu: f64,
     /// Coulomb friction coefficient μ.
     pub mu: f64,
-    /// Normal force F_n [N].
+    /// Normal force F_n \[N\].
     pub normal_force: f64,
     /// Longitudinal creepage ξ.
     pub xi: f64,
@@ -53,16 +53,16 @@ pub struct FastsimInput {
 /// FASTSIM result.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FastsimSolution {
-    /// Longitudinal force F_x on body 1 [N].
+    /// Longitudinal force F_x on body 1 \[N\].
     pub force_x: f64,
-    /// Lateral force F_y [N].
+    /// Lateral force F_y \[N\].
     pub force_y: f64,
     /// Spin moment M_z = ∫ (x p_y − y p_x) dA [N m].
     pub moment_z: f64,
     /// Elements in adhesion and in slip.
     pub adhesion_elements: usize,
     pub slip_elements: usize,
-    /// Frictional power per unit rolling speed, ∫ |p_t| |s| dA over the slip area [N].
+    /// Frictional power per unit rolling speed, ∫ |p_t| |s| dA over the slip area \[N\].
     pub frictional_power_per_speed: f64,
     /// Flexibilities L₁, L₂, L₃ [m/Pa].
     pub flexibilities: [f64; 3],

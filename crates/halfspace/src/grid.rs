@@ -2,12 +2,12 @@
 //!
 //! Element (ix, iy) covers [x0 + ix·dx, x0 + (ix+1)·dx] × [y0 + iy·dy, y0 + (iy+1)·dy] and
 //! is stored at index `iy * nx + ix` (x fastest). Tractions are constant per element and
-//! displacements are collocated at element centres (contact.md §3.2).
+//! displacements are collocated at element centres (references.md §C3.2).
 
 use crate::error::{ContactError, finite, positive};
 
-/// A uniform rectangular grid of `nx × ny` elements of size `dx × dy` [m],
-/// with lower-left corner (`x0`, `y0`) [m].
+/// A uniform rectangular grid of `nx × ny` elements of size `dx × dy` \[m\],
+/// with lower-left corner (`x0`, `y0`) \[m\].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Grid {
     pub nx: usize,
@@ -85,7 +85,7 @@ impl Grid {
         self.len() == 0
     }
 
-    /// Element area ΔA = dx·dy [m²].
+    /// Element area ΔA = dx·dy \[m²\].
     pub fn element_area(&self) -> f64 {
         self.dx * self.dy
     }

@@ -1,6 +1,6 @@
 //! Hertz's closed-form solutions: elliptic (3D), spherical and 2D line contact.
 //!
-//! For the quadratic gap h = A x² + B y² (contact.md §4.1), with ρ = 2/(A + B):
+//! For the quadratic gap h = A x² + B y² (references.md §C4.1), with ρ = 2/(A + B):
 //!
 //! * the ratio g = (smaller semi-axis)/(larger) solves
 //!   (smaller curvature)/(larger curvature) = (K(k) − E(k)) / (E(k)/g² − K(k)), k² = 1 − g²,
@@ -20,15 +20,15 @@ use crate::error::{ContactError, positive};
 /// The Hertzian solution of an elliptic contact.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Hertz {
-    /// Semi-axis along x [m].
+    /// Semi-axis along x \[m\].
     pub a: f64,
-    /// Semi-axis along y [m].
+    /// Semi-axis along y \[m\].
     pub b: f64,
-    /// Approach δ [m].
+    /// Approach δ \[m\].
     pub approach: f64,
-    /// Peak pressure p₀ [Pa].
+    /// Peak pressure p₀ \[Pa\].
     pub max_pressure: f64,
-    /// Total normal force F_n [N].
+    /// Total normal force F_n \[N\].
     pub normal_force: f64,
     /// Contact stiffness dF_n/dδ = 3F/(2δ) [N/m] (F ∝ δ^{3/2}).
     pub stiffness: f64,
@@ -72,8 +72,8 @@ pub fn semi_axis_ratio(curvature_ratio_target: f64) -> f64 {
 }
 
 impl Hertz {
-    /// Elliptic contact of the gap h = A x² + B y² [1/m] under the force `force` [N], with
-    /// effective modulus `e_star` [Pa].
+    /// Elliptic contact of the gap h = A x² + B y² [1/m] under the force `force` \[N\], with
+    /// effective modulus `e_star` \[Pa\].
     pub fn elliptic(
         a_curv: f64,
         b_curv: f64,
@@ -111,7 +111,7 @@ impl Hertz {
         })
     }
 
-    /// Elliptic contact at a prescribed approach δ [m] (F ∝ δ^{3/2}).
+    /// Elliptic contact at a prescribed approach δ \[m\] (F ∝ δ^{3/2}).
     pub fn elliptic_at_approach(
         a_curv: f64,
         b_curv: f64,
@@ -124,7 +124,7 @@ impl Hertz {
         Self::elliptic(a_curv, b_curv, e_star, force)
     }
 
-    /// A sphere of combined radius `radius` [m] on a plane (A = B = 1/(2R)).
+    /// A sphere of combined radius `radius` \[m\] on a plane (A = B = 1/(2R)).
     pub fn sphere(radius: f64, e_star: f64, force: f64) -> Result<Self, ContactError> {
         positive("radius", radius)?;
         let c = 0.5 / radius;
@@ -185,16 +185,16 @@ pub fn curvatures_from_radii(
 /// Hertz's 2D line contact (per unit length).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LineHertz {
-    /// Half-width of the contact strip [m].
+    /// Half-width of the contact strip \[m\].
     pub a: f64,
-    /// Peak pressure p₀ [Pa].
+    /// Peak pressure p₀ \[Pa\].
     pub max_pressure: f64,
     /// Force per unit length F' [N/m].
     pub force_per_length: f64,
 }
 
 impl LineHertz {
-    /// Line contact of combined radius `radius` [m] (1/R = 2A) with force per length F' [N/m].
+    /// Line contact of combined radius `radius` \[m\] (1/R = 2A) with force per length F' [N/m].
     pub fn new(radius: f64, e_star: f64, force_per_length: f64) -> Result<Self, ContactError> {
         positive("radius", radius)?;
         positive("E*", e_star)?;
@@ -225,7 +225,7 @@ mod tests {
 
     #[test]
     fn elliptic_integral_table() {
-        // contact.md §4.1 test vectors (AGM): g, K, E, D_min/D_max.
+        // references.md §C4.1 test vectors (AGM): g, K, E, D_min/D_max.
         let table = [
             (0.1, 3.695637, 1.015994, 0.027370),
             (0.2, 3.016112, 1.050502, 0.084555),
@@ -265,7 +265,7 @@ mod tests {
 
     #[test]
     fn contact_worked_cases() {
-        // contact.md §4.1, CONTACT's units mm, N, N/mm² converted to SI.
+        // references.md §C4.1, CONTACT's units mm, N, N/mm² converted to SI.
         // Cattaneo sphere: G = 200, ν = 0.42, R = 50 → A = B = 0.01/mm; Fn = 9.1954 N gives
         // a = 1 mm, p₀ = 4.3905 N/mm², δ = 0.020000 mm.
         let e_star = 200e6 / (1.0 - 0.42);
@@ -292,7 +292,7 @@ mod tests {
 
     #[test]
     fn carter_line_contact() {
-        // contact.md §4.1: R = 500 mm, G = 82000, ν = 0.28, a = 1 mm ⇒ F' = 178.90 N/mm,
+        // references.md §C4.1: R = 500 mm, G = 82000, ν = 0.28, a = 1 mm ⇒ F' = 178.90 N/mm,
         // p₀ = 113.88 N/mm².
         let e_star = 82000e6 / (1.0 - 0.28);
         let l = LineHertz::new(0.5, e_star, 178.90e3).unwrap();

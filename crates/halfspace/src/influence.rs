@@ -1,7 +1,7 @@
 //! Influence coefficients of the elastic half-space for piecewise-constant pressure.
 //!
 //! Love's solution (Boussinesq load spread uniformly over a rectangle), in CONTACT's
-//! combined-material form (contact.md §3.2): the normal displacement difference at an
+//! combined-material form (references.md §C3.2): the normal displacement difference at an
 //! observation point (x, y) due to a unit pressure on the element [ξ₁, ξ₂] × [η₁, η₂] is
 //!
 //! ```text
@@ -35,7 +35,7 @@ fn love_primitive(x: f64, y: f64) -> f64 {
     x_log_y_plus_r(x, y) + x_log_y_plus_r(y, x)
 }
 
-/// The bracket [[X ln(Y+r) + Y ln(X+r)]] for an observation point at offset (`ox`, `oy`) [m]
+/// The bracket [[X ln(Y+r) + Y ln(X+r)]] for an observation point at offset (`ox`, `oy`) \[m\]
 /// from the centre of a `dx × dy` element. Has the dimension of a length.
 pub fn love_bracket(ox: f64, oy: f64, dx: f64, dy: f64) -> f64 {
     let (x1, x2) = (ox + 0.5 * dx, ox - 0.5 * dx);
@@ -53,7 +53,7 @@ pub fn normal_influence(material: &Material, ox: f64, oy: f64, dx: f64, dy: f64)
 /// The A_nn kernel tabulated at the offsets of the zero-padded periodic embedding:
 /// a `2nx × 2ny` array (x fastest) whose entry (i, j) holds the influence at offset
 /// (i', j')·(dx, dy), where i' = i for i < nx and i − 2nx otherwise (circulant order,
-/// offsets −nx … nx−1, contact.md §3.3).
+/// offsets −nx … nx−1, references.md §C3.3).
 ///
 /// For a single-row grid (2D line contact, `ny = 1`) the row at offset −ny is zeroed as
 /// CONTACT does; the matrix–vector product never uses it and the FFT preconditioner is
@@ -100,7 +100,7 @@ fn y_log_r(x: f64, y: f64) -> f64 {
 }
 
 /// Corner double difference [[f]] of a primitive `f(X, Y)` for an observation point at offset
-/// (`ox`, `oy`) [m] from the centre of a `dx × dy` element (contact.md §3.2).
+/// (`ox`, `oy`) [m] from the centre of a `dx × dy` element (references.md §C3.2).
 fn bracket(f: impl Fn(f64, f64) -> f64, ox: f64, oy: f64, dx: f64, dy: f64) -> f64 {
     let (x1, x2) = (ox + 0.5 * dx, ox - 0.5 * dx);
     let (y1, y2) = (oy + 0.5 * dy, oy - 0.5 * dy);
@@ -108,7 +108,7 @@ fn bracket(f: impl Fn(f64, f64) -> f64, ox: f64, oy: f64, dx: f64, dy: f64) -> f
 }
 
 /// The tangential and coupling influence coefficients at one offset [m/Pa]
-/// (contact.md §3.2, CONTACT's combined-material form, everything over π G):
+/// (references.md §C3.2, CONTACT's combined-material form, everything over π G):
 ///
 /// ```text
 /// A_xx = 1/(πG) [[ Y ln(X+r) + (1−ν) X ln(Y+r) ]]
@@ -198,9 +198,9 @@ impl TangentialInfluence {
 
 /// Tangential kernels at all element offsets of `grid`, in the "centred" layout: a
 /// `(2nx − 1) × (2ny − 1)` array (x fastest) whose entry (i, j) is the coefficient at offset
-/// ((i − nx + 1)·dx + `shift`, (j − ny + 1)·dy). `shift` [m] moves the observation points
+/// ((i − nx + 1)·dx + `shift`, (j − ny + 1)·dy). `shift` \[m\] moves the observation points
 /// along x: with `shift = δq` it gives CONTACT's kernel "C_v" of the displacement that the
-/// particles now at x had one rolling step δq earlier (contact.md §3.5).
+/// particles now at x had one rolling step δq earlier (references.md §C3.5).
 /// Returns the tables of `components` in order.
 pub fn tangential_offset_tables(
     material: &Material,
@@ -263,7 +263,7 @@ mod tests {
 
     #[test]
     fn own_centre_of_square_element() {
-        // contact.md §3.2: [[·]] = 4 s ln(1 + √2) = 3.525494 s at the element's own centre.
+        // references.md §C3.2: [[·]] = 4 s ln(1 + √2) = 3.525494 s at the element's own centre.
         let s = 1.0e-3;
         let bracket = love_bracket(0.0, 0.0, s, s);
         assert_relative_eq!(
@@ -276,7 +276,7 @@ mod tests {
 
     #[test]
     fn contact_subsurf_case_1_approach() {
-        // contact.md §3.2: 1 mm × 1 mm element, combined G = 1 N/mm², ν = 0.28, unit
+        // references.md §C3.2: 1 mm × 1 mm element, combined G = 1 N/mm², ν = 0.28, unit
         // pressure → 0.807984 mm approach (CONTACT's examples/subsurf.ref_out, case 1).
         // In SI: G = 1e6 Pa, p = 1e6 Pa, element 1e-3 m → 0.807984e-3 m.
         let m = Material::from_combined(1.0e6, 0.28).unwrap();
@@ -286,7 +286,7 @@ mod tests {
 
     #[test]
     fn far_field_values() {
-        // contact.md §3.2: bracket at r = 1, 2, 5, 20 element sizes (unit element):
+        // references.md §C3.2: bracket at r = 1, 2, 5, 20 element sizes (unit element):
         // 1.0380, 0.50509, 0.20033, 0.050005, tending to 1/r.
         for (r, expected) in [
             (1.0, 1.0380),

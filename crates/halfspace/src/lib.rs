@@ -1,7 +1,7 @@
 //! Elastic half-space normal contact, solved the way CONTACT solves it.
 //!
 //! Two elastic (or one rigid) bodies touch over a small, almost flat area, so each is
-//! modelled as an elastic half-space (contact.md §2.1, §3). Given the undeformed gap h(x, y)
+//! modelled as an elastic half-space (references.md §C2.1, §3). Given the undeformed gap h(x, y)
 //! on a grid of rectangular elements (the potential contact area) and the approach δ or the
 //! total force F_n, [`NormalSolver`] finds the pressure p ≥ 0 with
 //! e = h − δ + A p = 0 in contact and e > 0, p = 0 outside, where A holds Love's influence
@@ -11,9 +11,9 @@
 //!
 //! The tangential problem with Coulomb friction — shift (Cattaneo–Mindlin), steady and
 //! transient rolling — is solved on the same grid by [`TangentialSolver`] ([`tangential`];
-//! ConvexGS/SteadyGS, contact.md §3.5), with the normal–tangential coupling of dissimilar
+//! ConvexGS/SteadyGS, references.md §C3.5), with the normal–tangential coupling of dissimilar
 //! materials in [`coupled`]; the simplified theories are Kalker's linear theory
-//! ([`linear_theory`]) and FASTSIM ([`fastsim`]). User documentation: docs/tangential.md.
+//! ([`linear_theory`]) and FASTSIM ([`fastsim`](mod@fastsim)). User documentation: docs/tangential.md.
 //!
 //! Units are SI: metres, newtons, pascals. Pressure is positive in compression; the
 //! approach is positive when the undeformed bodies overlap. Grids store element (ix, iy) at

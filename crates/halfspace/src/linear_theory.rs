@@ -2,7 +2,7 @@
 //!
 //! For an elliptic (Hertzian) contact with semi-axes a (along the rolling direction x) and
 //! b, c = √(ab), combined shear modulus G and Poisson's ratio ν, at vanishing creepage
-//! (Kalker 1967; book 1990 App. E; contact.md §4.2; forces on body 1, CONTACT's signs):
+//! (Kalker 1967; book 1990 App. E; references.md §C4.2; forces on body 1, CONTACT's signs):
 //!
 //! ```text
 //! F_x = −G c² C₁₁ ξ
@@ -74,7 +74,7 @@ pub struct CreepCoefficients {
     pub c23: f64,
 }
 
-/// Asymptotes for g = a/b → 0 (contact.md §4.2).
+/// Asymptotes for g = a/b → 0 (references.md §C4.2).
 fn asymptote_a_small(g: f64, nu: f64) -> CreepCoefficients {
     let pi = std::f64::consts::PI;
     CreepCoefficients {
@@ -84,7 +84,7 @@ fn asymptote_a_small(g: f64, nu: f64) -> CreepCoefficients {
     }
 }
 
-/// Asymptotes for g = b/a → 0, Λ = ln(16/g²) (contact.md §4.2).
+/// Asymptotes for g = b/a → 0, Λ = ln(16/g²) (references.md §C4.2).
 fn asymptote_b_small(g: f64, nu: f64) -> CreepCoefficients {
     let pi = std::f64::consts::PI;
     let l = (16.0 / (g * g)).ln();
@@ -106,7 +106,7 @@ fn harmonic_in_nu(values: [f64; 3], nu: f64) -> f64 {
     1.0 / (l0 / values[0] + l1 / values[1] + l2 / values[2])
 }
 
-/// Kalker's creepage coefficients for semi-axes `a` (rolling direction) and `b` [m] and the
+/// Kalker's creepage coefficients for semi-axes `a` (rolling direction) and `b` \[m\] and the
 /// combined Poisson's ratio `nu` ∈ [0, 0.5], by CONTACT's interpolation rule (module doc).
 pub fn creep_coefficients(a: f64, b: f64, nu: f64) -> Result<CreepCoefficients, ContactError> {
     positive("a", a)?;
@@ -149,9 +149,9 @@ pub fn creep_coefficients(a: f64, b: f64, nu: f64) -> Result<CreepCoefficients, 
     })
 }
 
-/// Creep forces of the linear theory [N] for creepages ξ, η (dimensionless) and spin φ
-/// [1/m] on an ellipse with semi-axes `a`, `b` [m]: (F_x, F_y) = (−G c² C₁₁ ξ,
-/// −G c² C₂₂ η − G c³ C₂₃ φ) with c = √(ab) and combined shear modulus `g` [Pa].
+/// Creep forces of the linear theory \[N\] for creepages ξ, η (dimensionless) and spin φ
+/// [1/m] on an ellipse with semi-axes `a`, `b` \[m\]: (F_x, F_y) = (−G c² C₁₁ ξ,
+/// −G c² C₂₂ η − G c³ C₂₃ φ) with c = √(ab) and combined shear modulus `g` \[Pa\].
 pub fn linear_forces(
     g: f64,
     nu: f64,

@@ -1,6 +1,6 @@
 //! Elastic materials of the two bodies and their combined constants.
 //!
-//! Combined constants after Kalker, as used by CONTACT (contact.md §3.1):
+//! Combined constants after Kalker, as used by CONTACT (references.md §C3.1):
 //!
 //! * 1/G = ½ (1/G₁ + 1/G₂)
 //! * ν/G = ½ (ν₁/G₁ + ν₂/G₂)
@@ -16,7 +16,7 @@ use crate::error::{ContactError, finite, positive};
 pub enum Body {
     /// A rigid body (infinite modulus).
     Rigid,
-    /// A linear elastic body with Young's modulus `e` [Pa] and Poisson's ratio `nu`.
+    /// A linear elastic body with Young's modulus `e` \[Pa\] and Poisson's ratio `nu`.
     Elastic { e: f64, nu: f64 },
 }
 
@@ -51,16 +51,16 @@ impl Body {
     }
 }
 
-/// Combined elastic constants of a pair of bodies (contact.md §3.1).
+/// Combined elastic constants of a pair of bodies (references.md §C3.1).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Material {
-    /// Combined shear modulus G [Pa].
+    /// Combined shear modulus G \[Pa\].
     pub g: f64,
     /// Combined Poisson's ratio ν.
     pub nu: f64,
     /// Kalker's difference parameter K (0 for quasi-identical bodies).
     pub k: f64,
-    /// Effective modulus E* = G/(1 − ν) [Pa].
+    /// Effective modulus E* = G/(1 − ν) \[Pa\].
     pub e_star: f64,
 }
 
@@ -141,7 +141,7 @@ mod tests {
 
     #[test]
     fn rigid_on_elastic_doubles_g_and_gives_kalker_k() {
-        // contact.md §3.1: rigid ball on elastic half-space: G = 2 G_el, ν = ν_el,
+        // references.md §C3.1: rigid ball on elastic half-space: G = 2 G_el, ν = ν_el,
         // K = −(1 − 2ν)/2 when the elastic body is body 2.
         let el = Body::elastic(210e9, 0.3).unwrap();
         let m = Material::combine(Body::Rigid, el).unwrap();

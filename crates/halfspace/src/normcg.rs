@@ -1,6 +1,6 @@
 //! NormCG: the bound-constrained conjugate-gradient solver of the normal contact problem.
 //!
-//! Find p ≥ 0 on the grid with (contact.md §3.4; Vollebregt, J. Comput. Phys. 257A (2014) 333)
+//! Find p ≥ 0 on the grid with (references.md §C3.4; Vollebregt, J. Comput. Phys. 257A (2014) 333)
 //!
 //! ```text
 //! e_I = h_I − δ + Σ_J A_IJ p_J = 0   and p_I ≥ 0   on the contact set C,
@@ -44,9 +44,9 @@ use crate::solution::NormalSolution;
 /// The normal load: approach or total force prescribed.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum NormalLoad {
-    /// Approach δ [m] prescribed; the force is computed.
+    /// Approach δ \[m\] prescribed; the force is computed.
     Approach(f64),
-    /// Total normal force F_n [N] prescribed; the approach is computed.
+    /// Total normal force F_n \[N\] prescribed; the approach is computed.
     Force(f64),
 }
 
@@ -233,7 +233,7 @@ impl NormalSolver {
         Ok(())
     }
 
-    /// Solve the normal contact problem for the undeformed gap `gap` (per element, [m];
+    /// Solve the normal contact problem for the undeformed gap `gap` (per element, \[m\];
     /// `f64::INFINITY` excludes an element) under `load`.
     pub fn solve(
         &mut self,

@@ -7,25 +7,25 @@ use crate::grid::Grid;
 pub struct NormalSolution {
     /// The grid the fields live on.
     pub grid: Grid,
-    /// Pressure p_n per element [Pa] (≥ 0; compression positive).
+    /// Pressure p_n per element \[Pa\] (≥ 0; compression positive).
     pub pressure: Vec<f64>,
     /// Contact set: true where p_n > 0.
     pub in_contact: Vec<bool>,
-    /// Deformed distance e = h − δ + u_n per element [m] (0 in contact, > 0 outside).
+    /// Deformed distance e = h − δ + u_n per element \[m\] (0 in contact, > 0 outside).
     pub deformed_distance: Vec<f64>,
-    /// Normal surface displacement difference u_n = Σ A p [m].
+    /// Normal surface displacement difference u_n = Σ A p \[m\].
     pub displacement: Vec<f64>,
-    /// Total normal force F_n = ΔA Σ p [N].
+    /// Total normal force F_n = ΔA Σ p \[N\].
     pub normal_force: f64,
-    /// Approach δ of the two bodies [m].
+    /// Approach δ of the two bodies \[m\].
     pub approach: f64,
-    /// Largest element pressure [Pa].
+    /// Largest element pressure \[Pa\].
     pub max_pressure: f64,
-    /// Contact area ΔA · (elements in contact) [m²].
+    /// Contact area ΔA · (elements in contact) \[m²\].
     pub contact_area: f64,
     /// Number of elements in contact.
     pub elements_in_contact: usize,
-    /// Centre of pressure (x, y) [m] (the grid origin if there is no contact).
+    /// Centre of pressure (x, y) \[m\] (the grid origin if there is no contact).
     pub centre_of_pressure: (f64, f64),
     /// NormCG iterations used.
     pub iterations: usize,

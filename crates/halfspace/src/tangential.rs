@@ -1,7 +1,7 @@
 //! Tangential contact with Coulomb friction: shift (Cattaneo–Mindlin), steady rolling and
 //! transient rolling, solved element by element the way CONTACT's ConvexGS / SteadyGS do.
 //!
-//! **Model** (contact.md §3.1, §3.5). Tractions p_t = (p_x, p_y) are constant per element and
+//! **Model** (references.md §C3.1, §3.5). Tractions p_t = (p_x, p_y) are constant per element and
 //! act on body 1; u_t = A_tt p_t with the tangential influence coefficients of
 //! [`crate::influence::tangential_influence`]. In one step in which the contact moves a
 //! distance δq in +x over the material (the leading edge is at the largest x), the shift of
@@ -12,7 +12,7 @@
 //! ```
 //!
 //! with creepages ξ, η (dimensionless), spin φ [1/m] about the coordinate origin, an extra
-//! rigid shift (w_x, w_y) [m], p' the tractions of the previous step and A_v CONTACT's
+//! rigid shift (w_x, w_y) \[m\], p' the tractions of the previous step and A_v CONTACT's
 //! kernel "C_v": the influence coefficients with the observation point moved by δq
 //! (the displacement the same particles had one step earlier). With μ the friction
 //! coefficient and g = μ p_n the traction bound, each element in contact is either in
@@ -55,7 +55,7 @@
 //! (linear) response; CONTACT does the same on the creepages (§3.5).
 //!
 //! **Dissimilar materials (K ≠ 0).** The pressure's own tangential displacement A_tn p_n
-//! (contact.md §3.2) enters W: A_tn p_n in a shift from the unloaded state,
+//! (references.md §C3.2) enters W: A_tn p_n in a shift from the unloaded state,
 //! (A_tn − A_v,tn) p_n in steady rolling, A_tn p_n − A_v,tn p_n' in a transient step. The
 //! reverse effect of the tangential tractions on the normal problem is
 //! [`TangentialSolver::normal_displacement`]; [`crate::coupled`] alternates the two solves
@@ -100,7 +100,7 @@ impl Creepages {
 pub enum RollingLoad {
     /// Creepages and spin prescribed.
     Creepages(Creepages),
-    /// Total tangential forces F_x, F_y [N] on body 1 and spin φ [1/m] prescribed; the
+    /// Total tangential forces F_x, F_y \[N\] on body 1 and spin φ [1/m] prescribed; the
     /// creepages ξ, η are found by Newton's method.
     Forces { fx: f64, fy: f64, phi: f64 },
 }
@@ -108,20 +108,20 @@ pub enum RollingLoad {
 /// What is prescribed in a shift problem.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum ShiftLoad {
-    /// Rigid shift (w_x, w_y) [m] of body 1 relative to body 2.
+    /// Rigid shift (w_x, w_y) \[m\] of body 1 relative to body 2.
     Shift { wx: f64, wy: f64 },
-    /// Total tangential forces F_x, F_y [N]; the shift is found by Newton's method.
+    /// Total tangential forces F_x, F_y \[N\]; the shift is found by Newton's method.
     Forces { fx: f64, fy: f64 },
 }
 
 /// The motion of one transient rolling step.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct StepMotion {
-    /// Distance rolled in this step δq = V δt [m] (≥ 0; 0 for a pure shift step).
+    /// Distance rolled in this step δq = V δt \[m\] (≥ 0; 0 for a pure shift step).
     pub delta_q: f64,
     /// Creepages applied over δq.
     pub creepages: Creepages,
-    /// Additional rigid shift (w_x, w_y) [m] in this step.
+    /// Additional rigid shift (w_x, w_y) \[m\] in this step.
     pub shift: (f64, f64),
 }
 
@@ -186,30 +186,30 @@ impl TangentialOptions {
 #[derive(Debug, Clone)]
 pub struct TangentialSolution {
     pub grid: Grid,
-    /// Tangential tractions p_x, p_y per element [Pa].
+    /// Tangential tractions p_x, p_y per element \[Pa\].
     pub traction_x: Vec<f64>,
     pub traction_y: Vec<f64>,
     /// Element states.
     pub state: Vec<ElementState>,
     /// Slip per element: the relative slip velocity s = S/δq (dimensionless, per unit rolling
-    /// speed) when the contact rolls (δq > 0), the shift S [m] itself in a shift problem.
+    /// speed) when the contact rolls (δq > 0), the shift S \[m\] itself in a shift problem.
     pub slip_x: Vec<f64>,
     pub slip_y: Vec<f64>,
-    /// Total forces F_x, F_y [N] and the spin moment M_z = ΔA Σ (x p_y − y p_x) [N m] about
+    /// Total forces F_x, F_y \[N\] and the spin moment M_z = ΔA Σ (x p_y − y p_x) [N m] about
     /// the coordinate origin.
     pub force_x: f64,
     pub force_y: f64,
     pub moment_z: f64,
     pub adhesion_elements: usize,
     pub slip_elements: usize,
-    /// Frictional dissipation −ΔA Σ p·s: per unit rolling speed [N] (multiply by V for watts)
-    /// when rolling, the work [J] of the shift in a shift problem.
+    /// Frictional dissipation −ΔA Σ p·s: per unit rolling speed \[N\] (multiply by V for watts)
+    /// when rolling, the work \[J\] of the shift in a shift problem.
     pub frictional_power: f64,
     /// Creepages used (found ones when forces were prescribed in rolling).
     pub creepages: Creepages,
-    /// Rigid shift (w_x, w_y) [m] used (found when forces were prescribed in a shift).
+    /// Rigid shift (w_x, w_y) \[m\] used (found when forces were prescribed in a shift).
     pub shift: (f64, f64),
-    /// Distance rolled per step δq [m] (δx in steady rolling, 0 in a shift).
+    /// Distance rolled per step δq \[m\] (δx in steady rolling, 0 in a shift).
     pub delta_q: f64,
     /// Gauss–Seidel sweeps in total (all Newton iterations included).
     pub iterations: usize,
@@ -436,7 +436,7 @@ impl TangentialSolver {
     }
 
     /// Normal displacement difference caused by tangential tractions, u_n = A_nx p_x + A_ny p_y
-    /// with A_nx = −A_xn, A_ny = −A_yn (contact.md §3.2) [m]; zero for K = 0. The normal problem
+    /// with A_nx = −A_xn, A_ny = −A_yn (references.md §C3.2) \[m\]; zero for K = 0. The normal problem
     /// of dissimilar bodies sees the gap h + u_n (used by [`crate::coupled`]).
     pub fn normal_displacement(
         &mut self,
@@ -525,7 +525,7 @@ impl TangentialSolver {
         }
     }
 
-    /// Solve the shift problem (Cattaneo–Mindlin) for the pressure `pressure` [Pa] from the
+    /// Solve the shift problem (Cattaneo–Mindlin) for the pressure `pressure` \[Pa\] from the
     /// unloaded state: S = W + A p.
     pub fn shift(
         &mut self,
@@ -564,7 +564,7 @@ impl TangentialSolver {
         }
     }
 
-    /// Solve steady rolling (δq = δx) for the pressure `pressure` [Pa].
+    /// Solve steady rolling (δq = δx) for the pressure `pressure` \[Pa\].
     pub fn steady_rolling(
         &mut self,
         pressure: &[f64],
@@ -607,8 +607,8 @@ impl TangentialSolver {
         }
     }
 
-    /// One transient rolling step (contact.md §3.5, T = 2): the contact has moved `motion.delta_q`
-    /// [m] in +x since the step whose tractions were `previous` = (p_x', p_y') on this same
+    /// One transient rolling step (references.md §C3.5, T = 2): the contact has moved `motion.delta_q`
+    /// \[m\] in +x since the step whose tractions were `previous` = (p_x', p_y') on this same
     /// (moving) grid; S = W + A p − A_v(δq) p'. With `delta_q = 0` this is a shift step from a
     /// loaded state (T = 1 sequences). A time-stepping caller passes the tractions of the
     /// previous [`TangentialSolution`] each step (zeros for the first one).
@@ -663,9 +663,9 @@ impl TangentialSolver {
     }
 
     /// A transient rolling step (as [`Self::transient_step`]) with the total tangential forces
-    /// F_x, F_y [N] prescribed and the spin φ [1/m] given: Newton's method finds the creepages
+    /// F_x, F_y \[N\] prescribed and the spin φ [1/m] given: Newton's method finds the creepages
     /// ξ, η of the step (CONTACT's T = 2 with forces prescribed, e.g. the Cattaneo → Carter
-    /// transient of contact.md §4.4). `delta_q` must be positive.
+    /// transient of references.md §C4.4). `delta_q` must be positive.
     #[allow(clippy::too_many_arguments)]
     pub fn transient_step_forces(
         &mut self,

@@ -4,7 +4,7 @@
 use halfspace::*;
 
 fn tractcurv(xi: f64, eta: f64, phi: f64) -> FastsimInput {
-    // contact.md §4.1 tractcurv ellipse: a = 6.30360 mm, b = 12.60719 mm, F_n = 106.7 kN.
+    // references.md §C4.1 tractcurv ellipse: a = 6.30360 mm, b = 12.60719 mm, F_n = 106.7 kN.
     FastsimInput {
         a: 6.30360e-3,
         b: 12.60719e-3,
@@ -60,7 +60,7 @@ fn large_creepage_saturates_at_mu_fn() {
 #[test]
 fn fastsim_is_close_to_the_exact_solution() {
     // CONTACT's fastsim example shows FASTSIM (elliptic bound) within 0.01 μF_n of the exact
-    // half-space solution (−0.60 vs −0.61, contact.md §3.6); FASTSIM's known error is largest
+    // half-space solution (−0.60 vs −0.61, references.md §C3.6); FASTSIM's known error is largest
     // at intermediate creepage. We compare with our exact steady-rolling solution on the
     // tractcurv ellipse (44 × 44) at ξ = 1e-4, 3e-4, 1e-3 and require 0.02 μF_n: the published
     // 0.01 plus the ~1 % discretisation error of the 44 × 44 exact solution (measured: 0.0002,

@@ -1,12 +1,12 @@
 //! Kalker's linear theory: the table as carried in CONTACT, CONTACT's interpolation rule and
-//! the worked values of contact.md §4.2.
+//! the worked values of references.md §C4.2.
 
 use halfspace::{Material, creep_coefficients, linear_forces};
 
 #[test]
 #[allow(clippy::approx_constant)] // 3.14 is a table entry, not π
 fn tabulated_points_are_reproduced() {
-    // contact.md §4.2 table (a ≤ b, rows a/b), at the table's own ν columns: the harmonic fit
+    // references.md §C4.2 table (a ≤ b, rows a/b), at the table's own ν columns: the harmonic fit
     // in ν passes through its nodes, so only round-off separates the result from the table.
     let rows = [
         (
@@ -53,7 +53,7 @@ fn tabulated_points_are_reproduced() {
 
 #[test]
 fn worked_values_of_the_interpolation_rule() {
-    // contact.md §4.2 "values produced by that rule", given to 4 decimals: the tolerance
+    // references.md §C4.2 "values produced by that rule", given to 4 decimals: the tolerance
     // 6e-5 is the rounding of the published digits (±5e-5) plus round-off.
     let cases = [
         (0.28, 0.2, 3.4959, 2.6341, 0.6218),
@@ -133,7 +133,7 @@ fn asymptotes_join_the_table() {
 
 #[test]
 fn tractcurv_linear_force() {
-    // contact.md §4.2: the tractcurv ellipse (a = 6.30360 mm, b = 12.60719 mm, G = 82 GPa,
+    // references.md §C4.2: the tractcurv ellipse (a = 6.30360 mm, b = 12.60719 mm, G = 82 GPa,
     // ν = 0.28) at ξ = 1e-5 gives |F_x| = G c² C11 ξ = 243.3 N (published to 4 digits).
     let m = Material::from_combined(82e9, 0.28).unwrap();
     let (fx, fy) = linear_forces(m.g, m.nu, 6.30360e-3, 12.60719e-3, 1e-5, 0.0, 0.0).unwrap();

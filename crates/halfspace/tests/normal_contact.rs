@@ -215,7 +215,7 @@ fn exact_sphere_matches_hertz_at_small_load() {
 
 #[test]
 fn line_contact_matches_hertz_2d() {
-    // Carter's cylinder (contact.md §4.1): R = 0.5 m, G = 82 GPa, ν = 0.28, F' = 178.9 kN/m
+    // Carter's cylinder (references.md §C4.1): R = 0.5 m, G = 82 GPa, ν = 0.28, F' = 178.9 kN/m
     // gives a = 1 mm and p₀ = 113.88 MPa. One row of elements of length L = 0.2 m ≫ a
     // approximates plane strain (CONTACT's 2D mode); discretisation error O(dx²).
     let m = Material::from_combined(82e9, 0.28).unwrap();

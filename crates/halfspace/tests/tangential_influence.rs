@@ -44,7 +44,7 @@ fn quadrature(f: impl Fn(f64, f64) -> f64, ox: f64, oy: f64, dx: f64, dy: f64) -
 
 #[test]
 fn coefficients_integrate_the_point_load_solutions() {
-    // Dissimilar bodies so that K ≠ 0 (contact.md §3.1): steel on a softer polymer-like body.
+    // Dissimilar bodies so that K ≠ 0 (references.md §C3.1): steel on a softer polymer-like body.
     let m = Material::combine(
         Body::elastic(210e9, 0.3).unwrap(),
         Body::elastic(3e9, 0.4).unwrap(),
@@ -100,7 +100,7 @@ fn coefficients_integrate_the_point_load_solutions() {
 #[test]
 fn own_element_values() {
     // At the element's own centre the Love brackets of A_xx for a square element are
-    // (2 − ν)·2 s ln(1 + √2) (half of contact.md's 4 s ln(1+√2) per term), A_xy = 0 by symmetry.
+    // (2 − ν)·2 s ln(1 + √2) (half of references.md's 4 s ln(1+√2) per term), A_xy = 0 by symmetry.
     let m = Material::from_combined(1.0, 0.28).unwrap();
     let s = 1.0;
     let a = tangential_influence(&m, 0.0, 0.0, s, s);

@@ -1,4 +1,4 @@
-//! Steady and transient rolling against Carter's 2D closed form (contact.md §4.3), CONTACT's
+//! Steady and transient rolling against Carter's 2D closed form (references.md §C4.3), CONTACT's
 //! carter2d and tractcurv outputs, and Kalker's linear theory (§4.2).
 
 use halfspace::*;
@@ -201,7 +201,7 @@ fn transient_rolling_reaches_carter() {
 }
 
 fn tractcurv() -> (Grid, Material, NormalSolution, Hertz) {
-    // contact.md §4.1/§4.2 tractcurv: A = 0.8 /m, B = 0.281417 /m, F_n = 106.7 kN, G = 82 GPa,
+    // references.md §C4.1/§4.2 tractcurv: A = 0.8 /m, B = 0.281417 /m, F_n = 106.7 kN, G = 82 GPa,
     // ν = 0.28 (a = 6.3036 mm, b = 12.607 mm); 44 × 44 elements over 1.05 × the ellipse.
     let m = Material::from_combined(82e9, 0.28).unwrap();
     let shape = GapShape::Quadratic {

@@ -1,4 +1,4 @@
-//! Shift problems against Cattaneo–Mindlin (contact.md §4.4) and CONTACT's cattaneo example.
+//! Shift problems against Cattaneo–Mindlin (references.md §C4.4) and CONTACT's cattaneo example.
 
 use halfspace::*;
 

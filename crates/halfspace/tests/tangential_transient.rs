@@ -1,5 +1,5 @@
 //! Transient rolling with forces prescribed: CONTACT's "Cattaneo → Carter" example
-//! (examples/catt_to_cart.inp, Kalker 1990 §5.2.2.5; contact.md §4.4).
+//! (examples/catt_to_cart.inp, Kalker 1990 §5.2.2.5; references.md §C4.4).
 
 use halfspace::*;
 

@@ -1,7 +1,7 @@
 //! Dense LU factorisation `P A = L U` into preallocated storage, shared by the implicit
 //! first-order methods (real and complex, Radau5) and the structural steppers: faer's
 //! partial-pivoting kernels with an explicit workspace, so refactorising and solving do not
-//! allocate (rust-stack.md §4.1).
+//! allocate (references.md §R4.1).
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::lu::partial_pivoting::{factor, solve};

@@ -1,5 +1,5 @@
 //! Second-order structural systems `M q'' + C q' + f_int(q) = f_ext(t)` and their time
-//! integrators (dynamics.md §3.4, §3.5).
+//! integrators (references.md §D3.4, §3.5).
 //!
 //! # Problem
 //! A [`StructuralSystem`] provides a constant mass matrix `M`, an optional constant damping
@@ -15,7 +15,7 @@
 //! | Störmer–Verlet (velocity form) | explicit | 2 | Hairer, Lubich & Wanner, *Geometric Numerical Integration* (2006) §I.1.4 |
 //! | leapfrog (kick–drift–kick, half-step damping) | explicit | 2 (1 in the damping term) | idem; explicit FE codes |
 //! | central difference = Newmark β = 0, γ = ½ | explicit | 2 | Newmark (1959) |
-//! | Newmark-β (average acceleration by default) | implicit | 2 if γ = ½, else 1 | Newmark (1959), dynamics.md §3.5 |
+//! | Newmark-β (average acceleration by default) | implicit | 2 if γ = ½, else 1 | Newmark (1959), references.md §D3.5 |
 //! | HHT-α, α ∈ [−1/3, 0] | implicit | 2 | Hilber, Hughes & Taylor (1977) |
 //! | generalized-α by ρ∞ ∈ [0, 1] | implicit | 2 | Chung & Hulbert (1993) |
 //! | backward Euler (second-order form) | implicit | 1 | the project's founding talk (seed) |
@@ -40,7 +40,7 @@
 //!
 //! [`StructuralStepper::step_equation`] returns these numbers ([`StepEquation`]), and
 //! [`StructuralStepper::finish_step`] applies the corrector once an outside solver (the
-//! vehicle–bridge coupling, dynamics.md §4.2, `A·x = r + b·F` with Sherman–Morrison) has found
+//! vehicle–bridge coupling, references.md §D4.2, `A·x = r + b·F` with Sherman–Morrison) has found
 //! `q_{n+1}`. The built-in [`StructuralStepper::step`] solves the same equation by Newton's method
 //! and calls the same corrector, so both paths share one implementation of the formulas.
 //!

@@ -1,5 +1,5 @@
 //! Events and contact: free-fall impact time, the Hertz impact of a steel ball on a steel
-//! half-space (dynamics.md §1.4, closed form computed here from the formulas) and a
+//! half-space (references.md §D1.4, closed form computed here from the formulas) and a
 //! multi-bounce drop that an adaptive implicit method must not step over.
 
 use integrate::ode::{Direction, Event, Method, OdeOptions, OdeSystem, Output, solve};
@@ -50,7 +50,7 @@ impl HertzBall {
         }
     }
 
-    /// Closed form (dynamics.md §1.4): δ* = (15 m v²/(16 E* √R))^{2/5}, F* = (4/3)E*√R δ*^{3/2},
+    /// Closed form (references.md §D1.4): δ* = (15 m v²/(16 E* √R))^{2/5}, F* = (4/3)E*√R δ*^{3/2},
     /// t_c = 2.9432 δ*/v.
     fn closed_form(&self, v: f64) -> (f64, f64, f64) {
         // (4/3) E* √R = stiffness, so 16 E* √R / 15 = (4/5) stiffness.

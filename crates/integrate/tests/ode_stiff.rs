@@ -1,4 +1,4 @@
-//! Stiff test set (dynamics.md §3.1): Radau5 and BDF against the published Bari test-set
+//! Stiff test set (references.md §D3.1): Radau5 and BDF against the published Bari test-set
 //! reference values (computed by the test-set authors with RADAU at 1.1e-18 in extended
 //! precision, i.e. independent of this code), Fortran RADAU5's run statistics, and the
 //! explicit-vs-implicit step count on stiff Van der Pol.
@@ -121,7 +121,7 @@ fn solve_orego(method: Method, rtol: f64) -> f64 {
     err
 }
 
-/// dynamics.md: assert about 1e-10 relative with rtol ≤ 1e-10. Measured 5–7e-11 (VDPOL),
+/// references.md: assert about 1e-10 relative with rtol ≤ 1e-10. Measured 5–7e-11 (VDPOL),
 /// 8.3e-12 (ROBER), and at rtol 1e-12 3.4e-11 (HIRES) and 1.1e-11 (OREGO); HIRES reaches
 /// 1.8e-9 at rtol 1e-10: RADAU5's tolerance transformation rtol' = 0.1·rtol^{2/3} lets the
 /// global error exceed rtol there.
@@ -146,7 +146,7 @@ fn bdf_reproduces_stiff_test_set() {
 }
 
 /// Fortran RADAU5 on VdP ε = 1e-6, y₀ = (2, −0.6), rtol = atol = 1e-4, h₀ = 1e-6 with the
-/// analytic Jacobian (dynamics.md §3.1, russell logs): naccept 242, nstep 280, nreject 8,
+/// analytic Jacobian (references.md §D3.1, russell logs): naccept 242, nstep 280, nreject 8,
 /// njac 162, ndec 252 (pairs), nsol 668, nfcn 2248, y(2) = (1.706163410178079,
 /// −0.8927971289301175). Every counter is reproduced exactly except nfcn, where we count
 /// 2247: band ±1 (the one evaluation is not located; russell's port reports +1 itself).
@@ -181,7 +181,7 @@ fn radau5_statistics_match_fortran_radau5_on_van_der_pol() {
     );
 }
 
-/// Fortran RADAU5 on Robertson, [0, 0.3], rtol 1e-2, atol 1e-8, h₀ = 1e-6 (dynamics.md §3.1):
+/// Fortran RADAU5 on Robertson, [0, 0.3], rtol 1e-2, atol 1e-8, h₀ = 1e-6 (references.md §D3.1):
 /// 15 accepted of 17 steps, 1 rejected, 8 Jacobians, 15 decompositions, 88 f-evaluations and
 /// y = (0.9886740138499884, 3.447720471782070e-5, 1.129150894529390e-2). Same band as above.
 #[test]

@@ -1,5 +1,5 @@
 //! Amplification matrices built from one step of the real stepping code, compared with the
-//! table of dynamics.md §3.5 and with the closed forms of §3.4.
+//! table of references.md §D3.5 and with the closed forms of §3.4.
 //!
 //! For u'' + ω²u = 0 with ω = 1 and Δt = Ω, the step maps (q_n, v_n, a_n) linearly to
 //! (q_{n+1}, v_{n+1}, a_{n+1}). Column j of the amplification matrix is one step from the j-th
@@ -64,7 +64,7 @@ fn spectrum(method: StructuralMethod, omega_dt: f64) -> Spectrum {
     }
 }
 
-/// One row of the dynamics.md §3.5 table:
+/// One row of the references.md §D3.5 table:
 /// ρ(0.1), ρ(1), ρ(1e4), ξ̄(0.1), ΔT/T(0.1), ξ̄(0.5), ΔT/T(0.5).
 struct Row {
     method: StructuralMethod,
@@ -220,7 +220,7 @@ fn damping_and_period_error_match_dynamics_table() {
 
 #[test]
 fn newmark_linear_acceleration_is_unstable_at_high_frequency() {
-    // dynamics.md §3.5: ρ(1e4) = 3.73205 → 2 + √3 as Ω → ∞; the stability limit is Ω = 2√3.
+    // references.md §D3.5: ρ(1e4) = 3.73205 → 2 + √3 as Ω → ∞; the stability limit is Ω = 2√3.
     let rho = spectrum(StructuralMethod::linear_acceleration(), 1e4).rho;
     assert!((rho - 3.73205).abs() <= 1e-5, "ρ = {rho}");
     let below = spectrum(
@@ -237,7 +237,7 @@ fn newmark_linear_acceleration_is_unstable_at_high_frequency() {
     assert!(above > 1.0 + 1e-3, "ρ above the limit = {above}");
 }
 
-/// Closed-form spectral radius of central difference / Verlet for u'' + u = 0 (dynamics.md
+/// Closed-form spectral radius of central difference / Verlet for u'' + u = 0 (references.md
 /// §3.4): λ² − (2 − Ω²)λ + 1 = 0, so ρ = 1 for Ω ≤ 2 and
 /// ρ = (Ω² − 2 + √((Ω² − 2)² − 4))/2 above.
 fn central_difference_radius(omega: f64) -> f64 {
@@ -277,7 +277,7 @@ fn central_difference_is_stable_below_two_and_unstable_above() {
 
 #[test]
 fn verlet_period_shortens_as_published() {
-    // dynamics.md §3.4: T̄/T = Ω/(2 arcsin(Ω/2)), 0.999583 at Ω = 0.1.
+    // references.md §D3.4: T̄/T = Ω/(2 arcsin(Ω/2)), 0.999583 at Ω = 0.1.
     for omega in [0.1, 0.5, 1.0, 1.5] {
         let s = spectrum(StructuralMethod::StormerVerlet, omega);
         let exact = omega / (2.0 * (omega / 2.0).asin());
@@ -301,7 +301,7 @@ fn verlet_period_shortens_as_published() {
 #[test]
 fn backward_euler_spectral_radius_is_closed_form() {
     // Backward Euler on the first-order form of u'' + u = 0: λ = 1/(1 ± iΩ), ρ = 1/√(1 + Ω²)
-    // (L-stable, dynamics.md §3.4).
+    // (L-stable, references.md §D3.4).
     for omega in [0.1, 1.0, 10.0, 1e4] {
         let rho = spectrum(StructuralMethod::BackwardEuler, omega).rho;
         let exact = 1.0 / (1.0 + omega * omega).sqrt();

@@ -223,7 +223,7 @@ fn backward_euler_step_is_the_seed_linear_system() {
 
 #[test]
 fn generalized_alpha_step_equation_numbers() {
-    // Chung & Hulbert (dynamics.md §3.5) at ρ∞ = 0.8: α_m = 0.6/1.8, α_f = 0.8/1.8,
+    // Chung & Hulbert (references.md §D3.5) at ρ∞ = 0.8: α_m = 0.6/1.8, α_f = 0.8/1.8,
     // γ = ½ − α_m + α_f, β = ¼(1 − α_m + α_f)².
     let rho: f64 = 0.8;
     let (am, af) = ((2.0 * rho - 1.0) / (rho + 1.0), rho / (rho + 1.0));
@@ -340,7 +340,7 @@ fn linear_problems_factorise_once_per_step_size() {
 
 #[test]
 fn linear_step_is_k_eff_times_q_equals_effective_load() {
-    // For f_int = K q the step equation is K_eff q_{n+1} = r (dynamics.md §4.2, A·x = r):
+    // For f_int = K q the step equation is K_eff q_{n+1} = r (references.md §D4.2, A·x = r):
     // solving it with a separate dense solver (faer's LU) must reproduce the built-in step of
     // every implicit scheme to round-off (1e-12 on O(1) states) on a damped, forced 3-DOF chain.
     use faer::linalg::solvers::Solve;

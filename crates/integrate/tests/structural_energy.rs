@@ -36,7 +36,7 @@ fn energy(m: &Mat<f64>, k: &Mat<f64>, q: &[f64], v: &[f64]) -> f64 {
 #[test]
 fn average_acceleration_conserves_linear_energy() {
     // The trapezoidal rule conserves ½vᵀMv + ½qᵀKq of an undamped, unforced linear system
-    // exactly (Newmark 1959; dynamics.md §3.5: zero algorithmic damping). Over 1e4 steps only
+    // exactly (Newmark 1959; references.md §D3.5: zero algorithmic damping). Over 1e4 steps only
     // round-off accumulates: a few ε per step, at worst linearly, ≈ 1e4·1e-15 → bound 1e-11.
     let (m, k) = chain_matrices();
     let mut problem =
@@ -147,7 +147,7 @@ fn trajectories_agree(
 
 #[test]
 fn hht_minus_one_third_equals_generalized_alpha_one_half() {
-    // dynamics.md §3.5: α_m = 0 at ρ∞ = 0.5, so HHT(−1/3) and gen-α(0.5) are one method; the
+    // references.md §D3.5: α_m = 0 at ρ∞ = 0.5, so HHT(−1/3) and gen-α(0.5) are one method; the
     // two parameter mappings agree to round-off, so the trajectories agree to 1e-12.
     trajectories_agree(
         StructuralMethod::hht(-1.0 / 3.0).unwrap(),
@@ -161,7 +161,7 @@ fn hht_minus_one_third_equals_generalized_alpha_one_half() {
 
 #[test]
 fn generalized_alpha_one_equals_trapezoidal_rule() {
-    // dynamics.md §3.5: ρ∞ = 1 gives α_m = α_f = ½, γ = ½, β = ¼. For a linear system the
+    // references.md §D3.5: ρ∞ = 1 gives α_m = α_f = ½, γ = ½, β = ¼. For a linear system the
     // α-weighted balance is the average of the balances at n and n+1, which the trapezoidal
     // rule also satisfies, so without load the trajectories agree up to round-off (1e-10 over
     // 2000 steps). With a load they differ at O(Δt²): gen-α takes f(t_{n+½}), not the average.

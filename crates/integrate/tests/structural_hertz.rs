@@ -1,4 +1,4 @@
-//! Hertz impact of a rigid steel ball on an elastic half-space (dynamics.md §1.4, Johnson
+//! Hertz impact of a rigid steel ball on an elastic half-space (references.md §D1.4, Johnson
 //! 1985 §11.4): m δ'' = −(4/3)E*√R δ^{3/2} while δ > 0, from δ = 0 at impact speed v.
 //! Closed forms: δ* = (15 m v²/(16 E* √R))^{2/5}, F* = (4/3)E*√R δ*^{3/2},
 //! t_c = 2.9432 δ*/v, exit speed = impact speed.

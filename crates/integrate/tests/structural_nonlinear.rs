@@ -1,5 +1,5 @@
 //! Nonlinear internal forces: Newton's method on the step equation, finite-difference tangents,
-//! and an outside solver (Sherman–Morrison on diagonal-plus-rank-one, dynamics.md §4.2) that
+//! and an outside solver (Sherman–Morrison on diagonal-plus-rank-one, references.md §D4.2) that
 //! uses only `step_equation` and `finish_step`.
 
 mod structural_support;
@@ -83,7 +83,7 @@ fn newton_solves_cubic_oscillator_with_second_order_period() {
         let e2 = (measured_period(method, 0.01) - exact).abs();
         let p = observed_order(e1, e2);
         println!("{method:?}: period error {e1:e} → {e2:e}, order {p:.4}");
-        // The trapezoidal rule is second order (dynamics.md §3.5); the crossings come from
+        // The trapezoidal rule is second order (references.md §D3.5); the crossings come from
         // the cubic Hermite dense output (O(Δt⁴) interpolation), so the order is that of the
         // scheme: ±0.2.
         assert!((p - 2.0).abs() < 0.2, "{method:?}: order {p}");
@@ -220,7 +220,7 @@ impl StructuralSystem for WheelOnMode {
 
 /// One step solved outside the stepper: Newton with the diagonal-plus-rank-one effective
 /// matrix D + s·b bᵀ inverted by Sherman–Morrison, using only the numbers of the step
-/// equation (dynamics.md §4.2): (D + s b bᵀ)⁻¹r = D⁻¹r − D⁻¹b · s(bᵀD⁻¹r)/(1 + s bᵀD⁻¹b).
+/// equation (references.md §D4.2): (D + s b bᵀ)⁻¹r = D⁻¹r − D⁻¹b · s(bᵀD⁻¹r)/(1 + s bᵀD⁻¹b).
 fn outside_step(s: &mut StructuralStepper, p: &mut WheelOnMode, dt: f64) -> usize {
     let eq = s.step_equation(dt).unwrap();
     let mut f_ext = [0.0; 2];

@@ -1,7 +1,7 @@
 //! Observed global order of convergence on u'' + u = 0, t ∈ [0, 10], Δt = 0.01 → 0.005
-//! (dynamics.md §3.5 "Observed global order"). The error is max(|q − cos t|, |v + sin t|) at
+//! (references.md §D3.5 "Observed global order"). The error is max(|q − cos t|, |v + sin t|) at
 //! t = 10, against the exact solution. Every order must lie within ±0.2 of theory (the
-//! assignment's bar); where dynamics.md prints an observed order, we also check it to ±0.01.
+//! assignment's bar); where references.md prints an observed order, we also check it to ±0.01.
 
 mod structural_support;
 
@@ -33,7 +33,7 @@ fn newmark_linear_acceleration_is_second_order() {
 fn hht_minus_0_1_is_second_order() {
     let p = order(StructuralMethod::hht(-0.1).unwrap());
     assert!((p - 2.0).abs() < 0.2, "order {p}");
-    // dynamics.md §3.5 prints 1.999.
+    // references.md §D3.5 prints 1.999.
     assert!((p - 1.999).abs() < 0.01, "order {p} vs published 1.999");
 }
 
@@ -41,7 +41,7 @@ fn hht_minus_0_1_is_second_order() {
 fn generalized_alpha_0_5_is_second_order() {
     let p = order(StructuralMethod::generalized_alpha(0.5).unwrap());
     assert!((p - 2.0).abs() < 0.2, "order {p}");
-    // dynamics.md §3.5 prints 1.998.
+    // references.md §D3.5 prints 1.998.
     assert!((p - 1.998).abs() < 0.01, "order {p} vs published 1.998");
 }
 
@@ -49,7 +49,7 @@ fn generalized_alpha_0_5_is_second_order() {
 fn newmark_gamma_0_6_is_first_order() {
     let p = order(StructuralMethod::newmark(0.3025, 0.6).unwrap());
     assert!((p - 1.0).abs() < 0.2, "order {p}");
-    // dynamics.md §3.5 prints 0.990.
+    // references.md §D3.5 prints 0.990.
     assert!((p - 0.990).abs() < 0.01, "order {p} vs published 0.990");
 }
 

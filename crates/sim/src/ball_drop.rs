@@ -1,5 +1,5 @@
-//! A rigid or elastic ball dropped on an elastic half-space (dynamics.md §1.4,
-//! contact.md §4.10).
+//! A rigid or elastic ball dropped on an elastic half-space (references.md §D1.4,
+//! references.md §C4.10).
 //!
 //! # Model
 //! One degree of freedom: `z` \[m\] is the height of the ball's lowest point above the surface
@@ -10,7 +10,7 @@
 //! ```
 //!
 //! with the elastic law `F_el` either Hertz's closed form `K δ^{3/2}` (`K = (4/3)E*√R` for a
-//! sphere, the elliptic Hertz solution for an ellipsoid; Johnson 1985 §11.4, contact.md §4.1)
+//! sphere, the elliptic Hertz solution for an ellipsoid; Johnson 1985 §11.4, references.md §C4.1)
 //! or the boundary-element half-space solver at prescribed approach ([`ContactForce::bem`]),
 //! and optional linear surface damping `c` \[N·s/m\]. `1/E* = (1−ν₁²)/E₁ + (1−ν₂²)/E₂`
 //! (a rigid ball has `1/E₁ = 0`).
@@ -545,7 +545,7 @@ fn max_step_count(key: &'static str, duration: f64, dt: f64) -> Result<(), BallD
     Ok(())
 }
 
-/// Hertz impact closed form (dynamics.md §1.4, contact.md §4.10; Johnson 1985 §11.4).
+/// Hertz impact closed form (references.md §D1.4, references.md §C4.10; Johnson 1985 §11.4).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HertzImpact {
     /// Impact speed v \[m/s\].
@@ -561,7 +561,7 @@ pub struct HertzImpact {
     pub contact_duration: f64,
 }
 
-/// `(4/5) B(2/5, 1/2)`: the Hertz contact-time constant (dynamics.md §1.4 gives 2.9432).
+/// `(4/5) B(2/5, 1/2)`: the Hertz contact-time constant (references.md §D1.4 gives 2.9432).
 pub const CONTACT_TIME_FACTOR: f64 = 2.943_275_184_324_705;
 
 impl HertzImpact {

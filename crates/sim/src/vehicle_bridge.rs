@@ -1,5 +1,5 @@
 //! Wheels over a modal bridge with local contact, coupled at every time step (the founding
-//! talk's central result; dynamics.md §1.1–1.3, §2.2–2.5, §4.2–4.3).
+//! talk's central result; references.md §D1.1–1.3, §2.2–2.5, §4.2–4.3).
 //!
 //! # Model (SI units; displacements positive downwards)
 //! * Bridge: a mass-normalised modal basis ([`beam::ModalBasis`], analytic or FE),
@@ -12,7 +12,7 @@
 //!   `m_w z_w'' = m_w g + P − F_k + k_s(z_b − z_w) + c_s(ż_b − ż_w)`,
 //!   `m_b z_b'' = m_b g − k_s(z_b − z_w) − c_s(ż_b − ż_w)`.
 //! * A massless wheel (m_w = 0; rigid contact and a body required) is the classic sprung mass
-//!   of Biggs and Yang–Yau (dynamics.md §1.3): its row is the force balance
+//!   of Biggs and Yang–Yau (references.md §D1.3): its row is the force balance
 //!   `F = P + k_s(z_b − z_w) + c_s(ż_b − ż_w)` and the constraint z_w = w(x_k) − r(x_k) fixes
 //!   its position, so the body rides on a spring–damper whose lower end follows the rail. The
 //!   wheel DOF stays in the state vector without inertia: the step matrix A keeps it
@@ -21,11 +21,11 @@
 //!   balance `P + k_s(z_b − z_w) + c_s(ż_b − ż_w) = 0` (the massless wheel hangs on the body).
 //! * Contact: the approach `δ_k = z_w − w(x_k) + r(x_k)` (r: rail irregularity, positive up)
 //!   and `F_k = F(δ_k)` by a [`ContactLaw`]: `rigid` (δ_k = 0 while F_k > 0, a Lagrange
-//!   multiplier: the wheel follows the rail, which is the moving-mass model of dynamics.md
+//!   multiplier: the wheel follows the rail, which is the moving-mass model of references.md
 //!   §1.2 with all its inertia and convective terms), `hertz`, or `bem`. Loss of contact
 //!   (F = 0) and re-contact are handled by every law.
 //!
-//! # Time step (dynamics.md §4.2)
+//! # Time step (references.md §D4.2)
 //! The contact-free system `M x'' + C x' + K x = f` (bridge modes and vehicle DOFs; gravity in
 //! f) is advanced by an implicit [`StructuralMethod`] of the `integrate` crate through its
 //! [`StepEquation`]: with `A = c_M M + c_C C + c_K K` and the step load `r`
@@ -129,18 +129,18 @@ fn invalid(name: impl Into<String>, value: f64, reason: &str) -> VehicleBridgeEr
 /// One wheel (with its sprung body) of the vehicle; positions at t = 0.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WheelSpec {
-    /// Position along the track at t = 0 [m] (0 = left end of the span).
+    /// Position along the track at t = 0 \[m\] (0 = left end of the span).
     pub position: f64,
-    /// Wheel (unsprung) mass m_w [kg], ≥ 0; 0 = a massless wheel, which needs the rigid
+    /// Wheel (unsprung) mass m_w \[kg\], ≥ 0; 0 = a massless wheel, which needs the rigid
     /// contact and a body (module documentation).
     pub wheel_mass: f64,
-    /// Sprung body mass m_b [kg] (0 = none).
+    /// Sprung body mass m_b \[kg\] (0 = none).
     pub body_mass: f64,
     /// Suspension stiffness k_s [N/m] (> 0 when there is a body).
     pub suspension_stiffness: f64,
     /// Suspension damping c_s [N s/m].
     pub suspension_damping: f64,
-    /// Extra constant force on the wheel P [N].
+    /// Extra constant force on the wheel P \[N\].
     pub static_load: f64,
 }
 
@@ -243,15 +243,15 @@ pub struct Scenario {
     pub irregularity: Irregularity,
     /// Time integrator (implicit).
     pub method: StructuralMethod,
-    /// Time step [s].
+    /// Time step \[s\].
     pub dt: f64,
-    /// Simulated time [s]; `None` = until the last wheel has left the span.
+    /// Simulated time \[s\]; `None` = until the last wheel has left the span.
     pub duration: Option<f64>,
     /// Coupling settings.
     pub coupling: CouplingSpec,
     /// Gravity [m/s²].
     pub gravity: f64,
-    /// Deflection and acceleration output point [m] (usually midspan).
+    /// Deflection and acceleration output point \[m\] (usually midspan).
     pub output_point: f64,
 }
 
@@ -272,17 +272,17 @@ impl std::fmt::Debug for Scenario {
 /// Per-wheel state reported at a time.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct WheelSample {
-    /// Position x_k [m].
+    /// Position x_k \[m\].
     pub position: f64,
-    /// Wheel displacement z_w [m] (down).
+    /// Wheel displacement z_w \[m\] (down).
     pub wheel_displacement: f64,
-    /// Body displacement z_b [m] (down; equal to z_w without a body).
+    /// Body displacement z_b \[m\] (down; equal to z_w without a body).
     pub body_displacement: f64,
     /// Body acceleration [m/s²] (0 without a body).
     pub body_acceleration: f64,
     /// Wheel acceleration [m/s²].
     pub wheel_acceleration: f64,
-    /// Approach δ [m].
+    /// Approach δ \[m\].
     pub approach: f64,
     /// Contact force and patch.
     pub contact: ContactOutput,
@@ -773,12 +773,12 @@ impl Simulation {
         &self.scenario
     }
 
-    /// Current time [s].
+    /// Current time \[s\].
     pub fn t(&self) -> f64 {
         self.stepper.t()
     }
 
-    /// Total simulated time of a [`run`](Self::run) [s].
+    /// Total simulated time of a [`run`](Self::run) \[s\].
     pub fn end_time(&self) -> f64 {
         self.scenario.duration.unwrap_or_else(|| {
             let first = self
@@ -811,7 +811,7 @@ impl Simulation {
         &self.samples
     }
 
-    /// Static wheel loads W_k = (m_w + m_b) g + P [N].
+    /// Static wheel loads W_k = (m_w + m_b) g + P \[N\].
     pub fn static_loads(&self) -> &[f64] {
         &self.static_loads
     }
@@ -826,7 +826,7 @@ impl Simulation {
         self.loss_events
     }
 
-    /// Bridge deflection w(x) [m] at the current time (0 off the span).
+    /// Bridge deflection w(x) \[m\] at the current time (0 off the span).
     pub fn deflection_at(&self, x: f64) -> Result<f64, VehicleBridgeError> {
         let m = self.scenario.bridge.n_modes();
         if !(0.0..=self.scenario.bridge.length()).contains(&x) {
@@ -850,7 +850,7 @@ impl Simulation {
     }
 
     /// Quasi-static deflection at the output point under the static wheel loads at their
-    /// current positions, `Σ_k W_k Σ_j w_j(x_out) w_j(x_k)/(m_j ω_j²)` [m] (same modal basis;
+    /// current positions, `Σ_k W_k Σ_j w_j(x_out) w_j(x_k)/(m_j ω_j²)` \[m\] (same modal basis;
     /// `None` if the basis has a rigid-body mode, ω_j = 0).
     pub fn quasi_static_output_deflection(&self) -> Result<Option<f64>, VehicleBridgeError> {
         let basis = &*self.scenario.bridge;
@@ -872,7 +872,7 @@ impl Simulation {
         Ok(Some(total))
     }
 
-    /// The centreline pressure of wheel `k`'s last contact evaluation (ξ [m], p [Pa]).
+    /// The centreline pressure of wheel `k`'s last contact evaluation (ξ \[m\], p \[Pa\]).
     pub fn centreline_pressure(&self, k: usize, out: &mut Vec<(f64, f64)>) {
         self.laws[k].centreline_pressure(out);
     }

@@ -1,4 +1,4 @@
-//! The boundary-element force model against Hertz (contact.md §4.10: "ball drop plus
+//! The boundary-element force model against Hertz (references.md §C4.10: "ball drop plus
 //! CONTACT-style normal solver plus time integrator"): the brief's steel ball at 1 m/s,
 //! gravity off, Radau5 at rtol 1e-6, the exact sphere gap on automatic 16 × 16 and 32 × 32
 //! grids sized for the Hertz patch at δ*.

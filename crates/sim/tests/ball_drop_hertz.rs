@@ -1,4 +1,4 @@
-//! Hertz impact of the brief's steel ball (contact.md §4.10, dynamics.md §1.4): R = 10 mm,
+//! Hertz impact of the brief's steel ball (references.md §C4.10, references.md §D1.4): R = 10 mm,
 //! ρ = 7850 kg/m³, rigid, on steel (E = 210 GPa, ν = 0.3) at V = 1 m/s, gravity off (the
 //! closed form has none): δ* = 17.795 µm, P* = 2309.8 N, T_c = 52.37 µs (published, rounded
 //! to 4–5 digits), rebound speed = impact speed.
@@ -31,7 +31,7 @@ fn rel(a: f64, b: f64) -> f64 {
 
 /// The closed form itself against the published numbers: mass 32.882 g, δ*, P*, T_c within
 /// 1e-4 (they are rounded to 5 digits, T_c = 52.37 µs to 4: its exact value is 52.376 µs),
-/// and the contact-time constant (4/5)B(2/5, 1/2) against dynamics.md's 2.9432 (5 digits).
+/// and the contact-time constant (4/5)B(2/5, 1/2) against references.md's 2.9432 (5 digits).
 #[test]
 fn closed_form_matches_the_published_numbers() {
     let s = BallDrop::steel_ball();
@@ -151,7 +151,7 @@ fn structural_methods_converge_at_second_order() {
 /// Fixed-step first-order methods: RK4 at Δt = T_c/100 is within 1e-6 in peak force
 /// (measured 7e-7); explicit and backward Euler converge at first order (observed order within
 /// 0.15 of 1, measured 0.99–1.01), explicit Euler gains energy (rebound > impact speed) and
-/// backward Euler loses it (dynamics.md §3.4: |1 + iΩ| > 1, L-stable damping).
+/// backward Euler loses it (references.md §D3.4: |1 + iΩ| > 1, L-stable damping).
 #[test]
 fn fixed_step_methods_have_their_orders_and_energy_behaviour() {
     let s = IntegratorSettings {
@@ -305,7 +305,7 @@ fn damping_loses_the_first_order_energy() {
     }
 }
 
-/// Ellipsoid: the Hertz constant K = F/δ^{3/2} of contact.md §4.1's creep-curve ellipse
+/// Ellipsoid: the Hertz constant K = F/δ^{3/2} of references.md §C4.1's creep-curve ellipse
 /// (A = 0.0008/mm, B = 2.81417e-4/mm, G = 82000 N/mm², ν = 0.28, identical bodies:
 /// F = 106.7 kN at δ = 0.0765171 mm) within 1e-4 (6-digit table); the sphere limit
 /// R_x = R_y = R gives (4/3)E*√R to 1e-9; and an ellipsoid impact reaches the energy-balance

@@ -10,7 +10,7 @@ use sim::vehicle_bridge::{
     Simulation, WheelSpec,
 };
 
-/// Frýba / Biggs bridge of dynamics.md §1.3: L = 25 m, EI = 2.87e9 × 2.90, ρA = 2303 kg/m.
+/// Frýba / Biggs bridge of references.md §D1.3: L = 25 m, EI = 2.87e9 × 2.90, ρA = 2303 kg/m.
 const L: f64 = 25.0;
 const EI: f64 = 2.87e9 * 2.90;
 const RHO_A: f64 = 2303.0;

@@ -1,5 +1,5 @@
 //! Massless wheels (`wheel_mass = 0`, rigid contact): the classic Biggs / Yang–Yau sprung
-//! mass (dynamics.md §1.3) against an independent RK4 of its equations, the crawling limit,
+//! mass (references.md §D1.3) against an independent RK4 of its equations, the crawling limit,
 //! and the input checks.
 
 use beam::{AnalyticBeam, Derivative, ModalBasis, ModalDamping, Support, UniformBeam};
@@ -9,7 +9,7 @@ use sim::vehicle_bridge::{
     VehicleBridgeError, WheelSpec,
 };
 
-/// Biggs's bridge (dynamics.md §1.3): L = 25 m, EI = 2.87e9 × 2.90, ρA = 2303 kg/m.
+/// Biggs's bridge (references.md §D1.3): L = 25 m, EI = 2.87e9 × 2.90, ρA = 2303 kg/m.
 const L: f64 = 25.0;
 const EI: f64 = 2.87e9 * 2.90;
 const RHO_A: f64 = 2303.0;

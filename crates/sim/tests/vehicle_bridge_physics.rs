@@ -109,7 +109,7 @@ fn random_profile_variance_matches_the_spectrum() {
     assert_ne!(a.height(7.3), c.height(7.3));
 }
 
-/// The moving-mass model of dynamics.md §1.2, integrated independently: with the load point
+/// The moving-mass model of references.md §D1.2, integrated independently: with the load point
 /// φ = w(ct), φ' and φ'' the mode-shape vectors and their derivatives at x = ct,
 /// `(I + M φφᵀ) q̈ + M(2c φφ'ᵀ) q̇ + (Ω² + M c² φφ''ᵀ) q = M g φ`
 /// by classical RK4 with Δt = 2e-5 s (error ≈ 1e-10 of the deflection). The simulation's rigid

@@ -1,5 +1,5 @@
 //! Longitudinal friction in the wheel-over-bridge run (sim::vehicle_bridge::traction) against
-//! Kalker's linear theory (contact.md §4.2), Coulomb saturation, the torque balance of the wheel
+//! Kalker's linear theory (references.md §C4.2), Coulomb saturation, the torque balance of the wheel
 //! and loss of contact.
 //!
 //! The steady runs keep the wheel on the rigid approach track (x < 0) so the normal force is

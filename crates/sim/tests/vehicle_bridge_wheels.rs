@@ -227,7 +227,7 @@ fn wheel_jumps_over_a_dip_with_every_model() {
     }
 }
 
-/// Picard's divergence threshold (dynamics.md §4.2): for a wheel on a rigid track, Newmark
+/// Picard's divergence threshold (references.md §D4.2): for a wheel on a rigid track, Newmark
 /// β = ¼ without damping, λ = k_c c_Δt = k_c β Δt²/m_w, so Picard converges iff
 /// Δt < Δt* = √(m_w/(β k_c)). The step where Picard first fails (located by bisection on Δt,
 /// Hertz contact at the static load with a 1 µm corrugation) agrees with Δt* within 10 %; the

@@ -2,7 +2,7 @@
 
 use crate::IntegrateError;
 
-/// A time integrator for `M q'' + C q' + f_int(q) = f_ext(t)` (dynamics.md §3.4–§3.5).
+/// A time integrator for `M q'' + C q' + f_int(q) = f_ext(t)` (references.md §D3.4–§3.5).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum StructuralMethod {
     /// Störmer–Verlet in velocity form (Hairer, Lubich & Wanner 2006, §I.1.4):
@@ -22,7 +22,7 @@ pub enum StructuralMethod {
     /// only `M` is factorised (once, independent of Δt), at the price of first-order accuracy in
     /// the damping term. For `C = 0` both methods coincide.
     Leapfrog,
-    /// Newmark-β (Newmark 1959; dynamics.md §3.5):
+    /// Newmark-β (Newmark 1959; references.md §D3.5):
     /// `q_{n+1} = q_n + Δt v_n + Δt²[(½ − β) a_n + β a_{n+1}]`,
     /// `v_{n+1} = v_n + Δt[(1 − γ) a_n + γ a_{n+1}]`, balance at `t_{n+1}`.
     /// β = 0 makes it explicit (central difference for γ = ½).

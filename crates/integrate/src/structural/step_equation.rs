@@ -14,7 +14,7 @@ use crate::IntegrateError;
 /// ∂R/∂q_{n+1} = K_eff = c_M M + c_C C + c_K K_t
 /// ```
 ///
-/// An outside solver (the vehicle–bridge coupling of dynamics.md §4.2) adds its own forces to
+/// An outside solver (the vehicle–bridge coupling of references.md §D4.2) adds its own forces to
 /// `f_ext` (weighted consistently, e.g. `(1−α_f) F_{n+1} + α_f F_n`), solves `R = 0` for
 /// `q_{n+1}` and hands it to [`StructuralStepper::finish_step`](super::StructuralStepper::finish_step).
 /// For a linear structure, [`effective_load`](Self::effective_load) and
@@ -155,7 +155,7 @@ impl StepEquation {
     }
 
     /// The load vector `r` of the step equation of a linear structure, `K_eff q_{n+1} = r`
-    /// (dynamics.md §4.2 writes a coupled step as `A·x = r + b·F`):
+    /// (references.md §D4.2 writes a coupled step as `A·x = r + b·F`):
     ///
     /// ```text
     /// r = c_M M q̃ + c_C C q̃ − (1 − α_f) C ṽ − h + f_ext(t_force)

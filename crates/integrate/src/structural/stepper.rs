@@ -163,7 +163,7 @@ impl std::fmt::Debug for StructuralStepper {
 
 impl StructuralStepper {
     /// Creates a stepper at `(t0, q0, v0)` with the consistent initial acceleration
-    /// `a₀ = M⁻¹(f_ext(t₀) − C v₀ − f_int(q₀))` (dynamics.md §3.5, start-up).
+    /// `a₀ = M⁻¹(f_ext(t₀) − C v₀ − f_int(q₀))` (references.md §D3.5, start-up).
     pub fn new<P: StructuralSystem + ?Sized>(
         method: StructuralMethod,
         problem: &mut P,
@@ -204,7 +204,7 @@ impl StructuralStepper {
         self.consistent_acceleration(problem)
     }
 
-    /// `a = M⁻¹(f_ext(t) − C v − f_int(q))` at the current state (dynamics.md §3.5, start-up),
+    /// `a = M⁻¹(f_ext(t) − C v − f_int(q))` at the current state (references.md §D3.5, start-up),
     /// with `f_int(q)` already in `self.f_int`.
     fn consistent_acceleration<P: StructuralSystem + ?Sized>(
         &mut self,

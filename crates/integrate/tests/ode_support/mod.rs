@@ -40,7 +40,7 @@ impl OdeSystem for Decay {
 }
 
 /// Van der Pol in Hairer's scaled form `y1' = y2, y2' = ((1 − y1²) y2 − y1)/ε`
-/// (dynamics.md §3.1); with ε = 1e-6 on [0, 2] it is the test set's VDPOL (μ = 1000 on
+/// (references.md §D3.1); with ε = 1e-6 on [0, 2] it is the test set's VDPOL (μ = 1000 on
 /// [0, 2000]) with y2 scaled by μ. Finite-difference Jacobian (none given).
 pub struct VanDerPol {
     pub eps: f64,
@@ -78,7 +78,7 @@ impl OdeSystem for VanDerPolJac {
     }
 }
 
-/// Robertson's chemical kinetics (ROBER of the Bari test set, dynamics.md §3.1).
+/// Robertson's chemical kinetics (ROBER of the Bari test set, references.md §D3.1).
 pub struct Robertson;
 
 impl OdeSystem for Robertson {
@@ -126,7 +126,7 @@ impl OdeSystem for Hires {
     }
 }
 
-/// OREGO, the Oregonator (Field–Noyes; Bari test set definition, dynamics.md §3.1).
+/// OREGO, the Oregonator (Field–Noyes; Bari test set definition, references.md §D3.1).
 pub struct Oregonator;
 
 impl OdeSystem for Oregonator {

@@ -6,7 +6,7 @@ use halfspace::{GapShape, Hertz, Material, NormalLoad, NormalSolver, SolverOptio
 use super::{BallDropError, BallShape};
 
 /// The Hertz constant `K` of `F = K δ^{3/2}` \[N/m^{3/2}\] for the ball's gap on a flat
-/// surface (dynamics.md §1.4, contact.md §4.1).
+/// surface (references.md §D1.4, references.md §C4.1).
 ///
 /// * sphere: `K = (4/3) E* √R` (Johnson 1985 §11.4);
 /// * ellipsoid with principal radii of curvature `R_x`, `R_y` at its lowest point: the gap is

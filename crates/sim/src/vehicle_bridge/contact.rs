@@ -6,7 +6,7 @@
 //! the modal loads I_j = Σ_i F_i w_j(x_wheel + ξ_i) (the seed's ∫ p w_j dx, Σ_e p_e ΔA w_j(x_e)).
 //!
 //! * [`HertzLaw`]: the closed-form elliptic Hertz spring F = C_H δ^{3/2} for δ > 0, else 0
-//!   (contact.md §4.1; dynamics.md §2.3), with the gap curvatures A = 1/(2R_w) along the track
+//!   (references.md §C4.1; references.md §D2.3), with the gap curvatures A = 1/(2R_w) along the track
 //!   and B = 1/(2R_r) across it; k_c = 1.5 F/δ. A point contact (one column at ξ = 0).
 //! * [`BemLaw`]: the half-space solver ([`halfspace::NormalSolver`], NormCG at prescribed
 //!   approach, warm-started from the previous call) on an nx × ny grid under the wheel, with the
@@ -24,15 +24,15 @@ use super::VehicleBridgeError;
 /// One evaluation of a contact law.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct ContactOutput {
-    /// Normal force F [N] (≥ 0).
+    /// Normal force F \[N\] (≥ 0).
     pub force: f64,
     /// Tangent dF/dδ [N/m] (0 out of contact).
     pub stiffness: f64,
-    /// Length of the contact patch along the track [m].
+    /// Length of the contact patch along the track \[m\].
     pub patch_length: f64,
-    /// Width of the contact patch across the track [m].
+    /// Width of the contact patch across the track \[m\].
     pub patch_width: f64,
-    /// Peak pressure [Pa].
+    /// Peak pressure \[Pa\].
     pub max_pressure: f64,
     /// Iterations of the contact solver (0 for closed forms).
     pub iterations: usize,
@@ -48,19 +48,19 @@ pub trait ContactLaw: std::fmt::Debug {
         false
     }
 
-    /// Column positions ξ_i relative to the wheel [m] (one column at 0 for a point contact).
+    /// Column positions ξ_i relative to the wheel \[m\] (one column at 0 for a point contact).
     fn columns(&self) -> &[f64];
 
-    /// The approach δ that carries the force `force` [N] on a smooth, undeformed rail.
+    /// The approach δ that carries the force `force` \[N\] on a smooth, undeformed rail.
     fn static_approach(&mut self, force: f64) -> Result<f64, VehicleBridgeError>;
 
-    /// The pressure [Pa] of the last evaluation along the track centreline, as (ξ, p) pairs
+    /// The pressure \[Pa\] of the last evaluation along the track centreline, as (ξ, p) pairs
     /// written into `out` (empty for the rigid constraint).
     fn centreline_pressure(&self, out: &mut Vec<(f64, f64)>) {
         out.clear();
     }
 
-    /// The grid and pressure [Pa] of the last evaluation (row-major, x fastest) for laws that
+    /// The grid and pressure \[Pa\] of the last evaluation (row-major, x fastest) for laws that
     /// solve the pressure field (`bem`); `None` for the closed forms.
     fn pressure_field(&self) -> Option<(&Grid, &[f64])> {
         None
@@ -83,18 +83,18 @@ pub trait ContactLaw: std::fmt::Debug {
 /// Elastic constants and geometry shared by the laws.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactGeometry {
-    /// Wheel rolling radius R_w [m].
+    /// Wheel rolling radius R_w \[m\].
     pub wheel_radius: f64,
-    /// Transverse radius of the rail head R_r [m].
+    /// Transverse radius of the rail head R_r \[m\].
     pub rail_profile_radius: f64,
-    /// Young's modulus of wheel and rail [Pa].
+    /// Young's modulus of wheel and rail \[Pa\].
     pub youngs_modulus: f64,
     /// Poisson's ratio of wheel and rail.
     pub poisson_ratio: f64,
 }
 
 impl ContactGeometry {
-    /// Validates the geometry and returns the combined material (contact.md §3.1).
+    /// Validates the geometry and returns the combined material (references.md §C3.1).
     pub fn material(&self) -> Result<Material, VehicleBridgeError> {
         for (name, v) in [
             ("contact.wheel_radius", self.wheel_radius),
@@ -272,7 +272,7 @@ pub struct BemLaw {
 }
 
 impl BemLaw {
-    /// A BEM law on an `n × n` grid sized for forces up to `max_force` [N]: half-widths of
+    /// A BEM law on an `n × n` grid sized for forces up to `max_force` \[N\]: half-widths of
     /// 1.25 × the Hertz semi-axes at `max_force`; NormCG tolerance `tol`.
     pub fn new(
         geometry: &ContactGeometry,
@@ -329,7 +329,7 @@ impl BemLaw {
         &self.grid
     }
 
-    /// The pressure of the last solve [Pa], row-major (x fastest).
+    /// The pressure of the last solve \[Pa\], row-major (x fastest).
     pub fn last_pressure(&self) -> &[f64] {
         &self.pressure
     }

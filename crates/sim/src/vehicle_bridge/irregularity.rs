@@ -1,4 +1,4 @@
-//! Rail irregularities r(x) [m], positive when the rail top is higher than nominal (it
+//! Rail irregularities r(x) \[m\], positive when the rail top is higher than nominal (it
 //! increases the approach, δ = z_w − w(x) + r(x)).
 //!
 //! * [`Irregularity::None`]: a smooth rail;
@@ -7,11 +7,11 @@
 //! * [`Irregularity::Ramp`]: a smooth step of height h over length ℓ (a ramp, e.g. at an
 //!   abutment), r = h·s(ξ) with the C¹ step s(ξ) = 3ξ² − 2ξ³, ξ = (x − x₀)/ℓ ∈ [0, 1];
 //! * [`Irregularity::WheelFlat`]: a haversine flat of depth d and length ℓ repeating every wheel
-//!   revolution 2πR (dynamics.md §2.5: a fresh flat of chord ℓ has d ≈ ℓ²/(8R)), as an equivalent
+//!   revolution 2πR (references.md §D2.5: a fresh flat of chord ℓ has d ≈ ℓ²/(8R)), as an equivalent
 //!   rail irregularity r = −(d/2)(1 − cos(2π s/ℓ)) for s = (x − x₀) mod 2πR < ℓ;
 //! * [`Irregularity::Corrugation`]: r = a sin(2π(x − x₀)/λ) on [x₀, x₁];
 //! * [`Irregularity::Random`]: a random profile with a one-sided spatial PSD S(Ω) [m²/(rad/m)]
-//!   (dynamics.md §2.4), by the spectral representation
+//!   (references.md §D2.4), by the spectral representation
 //!   r(x) = Σ_k √(2 S(Ω_k) ΔΩ) cos(Ω_k x + θ_k), θ_k uniform in [0, 2π) from a seeded ChaCha8
 //!   generator, Ω_k at the centres of N equal bins of the band [2π/λ_max, 2π/λ_min]. Its
 //!   variance is Σ_k S(Ω_k) ΔΩ ≈ ∫_band S dΩ.
@@ -23,7 +23,7 @@ use rand_chacha::ChaCha8Rng;
 
 use super::VehicleBridgeError;
 
-/// Track-quality spectra of dynamics.md §2.4 (vertical profile), taken one-sided in Ω [rad/m].
+/// Track-quality spectra of references.md §D2.4 (vertical profile), taken one-sided in Ω [rad/m].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum TrackSpectrum {
     /// US FRA class 1 … 6: S(Ω) = k A_v Ω_c² / (Ω² (Ω² + Ω_c²)), k = 0.25, Ω_c = 0.8245 rad/m,
@@ -82,28 +82,28 @@ pub enum Irregularity {
     /// Smooth rail, r = 0.
     #[default]
     None,
-    /// Cosine dip of depth `depth` [m] and length `length` [m] starting at `position` [m].
+    /// Cosine dip of depth `depth` \[m\] and length `length` \[m\] starting at `position` \[m\].
     Dip {
         position: f64,
         length: f64,
         depth: f64,
     },
-    /// C¹ ramp of height `height` [m] over `length` [m] starting at `position` [m].
+    /// C¹ ramp of height `height` \[m\] over `length` \[m\] starting at `position` \[m\].
     Ramp {
         position: f64,
         length: f64,
         height: f64,
     },
-    /// Haversine wheel flat of depth `depth` and length `length` [m] on a wheel of radius
-    /// `wheel_radius`, first met at `position` [m], repeating every 2π·`wheel_radius`.
+    /// Haversine wheel flat of depth `depth` and length `length` \[m\] on a wheel of radius
+    /// `wheel_radius`, first met at `position` \[m\], repeating every 2π·`wheel_radius`.
     WheelFlat {
         position: f64,
         length: f64,
         depth: f64,
         wheel_radius: f64,
     },
-    /// Sinusoidal corrugation of amplitude `amplitude` [m] and wavelength `wavelength` [m]
-    /// between `start` and `end` [m].
+    /// Sinusoidal corrugation of amplitude `amplitude` \[m\] and wavelength `wavelength` \[m\]
+    /// between `start` and `end` \[m\].
     Corrugation {
         amplitude: f64,
         wavelength: f64,
@@ -120,11 +120,11 @@ pub enum Irregularity {
 /// Values r_i and slopes r'_i at x_i = x0 + i h.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TabulatedProfile {
-    /// First abscissa [m].
+    /// First abscissa \[m\].
     pub x0: f64,
-    /// Spacing h [m].
+    /// Spacing h \[m\].
     pub h: f64,
-    /// r(x_i) [m].
+    /// r(x_i) \[m\].
     pub values: Vec<f64>,
     /// r'(x_i).
     pub slopes: Vec<f64>,
@@ -133,13 +133,13 @@ pub struct TabulatedProfile {
 /// A sampled random profile r(x) = Σ a_k cos(Ω_k x + θ_k).
 #[derive(Debug, Clone, PartialEq)]
 pub struct RandomProfile {
-    /// Amplitudes a_k = √(2 S(Ω_k) ΔΩ) [m].
+    /// Amplitudes a_k = √(2 S(Ω_k) ΔΩ) \[m\].
     pub amplitudes: Vec<f64>,
     /// Spatial circular frequencies Ω_k [rad/m].
     pub wavenumbers: Vec<f64>,
-    /// Phases θ_k [rad].
+    /// Phases θ_k \[rad\].
     pub phases: Vec<f64>,
-    /// Σ S(Ω_k) ΔΩ = Σ a_k²/2 [m²], the theoretical variance of the profile.
+    /// Σ S(Ω_k) ΔΩ = Σ a_k²/2 \[m²\], the theoretical variance of the profile.
     pub variance: f64,
 }
 
@@ -168,7 +168,7 @@ fn check_finite(name: &str, v: f64) -> Result<(), VehicleBridgeError> {
 }
 
 impl Irregularity {
-    /// A random profile of `spectrum` over wavelengths [`lambda_min`, `lambda_max`] [m] with
+    /// A random profile of `spectrum` over wavelengths [`lambda_min`, `lambda_max`] \[m\] with
     /// `components` cosines and phases from `seed` (module documentation).
     pub fn random(
         spectrum: TrackSpectrum,
@@ -309,7 +309,7 @@ impl Irregularity {
         }
     }
 
-    /// The rail height r(x) [m] at x [m].
+    /// The rail height r(x) \[m\] at x \[m\].
     pub fn height(&self, x: f64) -> f64 {
         match self {
             Irregularity::None => 0.0,

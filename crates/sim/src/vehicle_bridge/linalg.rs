@@ -1,4 +1,4 @@
-//! Linear algebra of the coupled step (dynamics.md §4.2).
+//! Linear algebra of the coupled step (references.md §D4.2).
 //!
 //! The contact-free step matrix `A = c_M M + c_C C + c_K K` of the bridge modes and the vehicle
 //! is block diagonal: one 1×1 block per bridge mode (mass-normalised modal equations) and one
@@ -163,7 +163,7 @@ impl CapacitanceWork {
     }
 }
 
-/// One linearised (quasi-)Newton update of the coupled step (dynamics.md §4.2), in the
+/// One linearised (quasi-)Newton update of the coupled step (references.md §D4.2), in the
 /// capacitance form that also covers rigid contacts.
 ///
 /// Unknowns: the state increment Δx and the force increments ΔF_c of the active wheels. The
@@ -178,7 +178,7 @@ impl CapacitanceWork {
 ///
 /// For compliant contacts this is the Woodbury formula for `(A + s Ĝ K_c Vᵀ)⁻¹` (capacitance
 /// matrix scaled by K_c⁻¹) and, for one wheel, Sherman–Morrison with the denominator
-/// `1 + λ`, `λ = s k_c vᵀA⁻¹ĝ` (dynamics.md §4.2). On entry `x` holds −R; on exit Δx, and `df`
+/// `1 + λ`, `λ = s k_c vᵀA⁻¹ĝ` (references.md §D4.2). On entry `x` holds −R; on exit Δx, and `df`
 /// holds ΔF. Returns `false` if the capacitance matrix is singular.
 pub fn contact_update(
     a: &BlockDiagonal,

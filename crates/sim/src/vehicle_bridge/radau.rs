@@ -33,7 +33,7 @@ use integrate::ode::{OdeOptions, OdeStepper, OdeSystem, Radau5};
 use super::{ContactOutput, Simulation, VehicleBridgeError, invalid};
 
 /// Tolerances of the Radau5 path (local error test `|e_i| ≤ atol + rtol |y_i|`, on
-/// displacements [m] and modal coordinates [m √kg] and their rates).
+/// displacements \[m\] and modal coordinates [m √kg] and their rates).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Radau5Spec {
     /// Relative tolerance (> 0).

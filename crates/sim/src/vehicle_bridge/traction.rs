@@ -1,16 +1,16 @@
 //! Longitudinal friction (traction and braking) of the wheels, weakly coupled to the vertical
-//! simulation (docs/vehicle_bridge.md, "Traction (friction)"; contact.md §3.5, §3.6, §4.2).
+//! simulation (docs/vehicle_bridge.md, "Traction (friction)"; references.md §C3.5, §3.6, §4.2).
 //!
-//! After every accepted vertical step of Δt [s] the normal problem of each wheel is known
-//! (force F_n [N], and with the `bem` law the pressure field p_n [Pa] on its grid); the
-//! longitudinal creep force F_x [N] on the wheel is then computed with one of three methods:
+//! After every accepted vertical step of Δt \[s\] the normal problem of each wheel is known
+//! (force F_n \[N\], and with the `bem` law the pressure field p_n \[Pa\] on its grid); the
+//! longitudinal creep force F_x \[N\] on the wheel is then computed with one of three methods:
 //!
 //! * `exact`: one transient rolling step of the half-space tangential problem
 //!   ([`TangentialSolver::transient_step`], CONTACT's T = 2) on the BEM grid with the wheel's
 //!   pressure, the previous step's tractions and δq = V Δt (bem contact only);
 //! * `fastsim`: Kalker's FASTSIM on the Hertz ellipse of the current normal force
 //!   (semi-axes a along, b across the track from [`HertzLaw::at_force`]);
-//! * `linear`: Kalker's linear theory F_x = −G c² C₁₁ ξ, c² = ab (contact.md §4.2), capped at
+//! * `linear`: Kalker's linear theory F_x = −G c² C₁₁ ξ, c² = ab (references.md §C4.2), capped at
 //!   |F_x| ≤ μ F_n (the theory itself is uncapped; the cap is this model's choice).
 //!
 //! **Sign convention** (the tangential solver's, body 1 = wheel, forces on the wheel): the
@@ -98,7 +98,7 @@ pub struct TractionSpec {
 /// Traction of one wheel after a step.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct TractionSample {
-    /// Longitudinal force F_x on the wheel [N] (> 0 forward).
+    /// Longitudinal force F_x on the wheel \[N\] (> 0 forward).
     pub longitudinal_force: f64,
     /// Creepage ξ = (V − ωR)/V of the step.
     pub creepage: f64,
@@ -114,9 +114,9 @@ pub struct TractionSample {
 /// Run statistics of the traction.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct TractionSummary {
-    /// Largest |F_x| over all wheels and steps [N] (signed value of that step).
+    /// Largest |F_x| over all wheels and steps \[N\] (signed value of that step).
     pub max_longitudinal_force: f64,
-    /// Mean F_x over all wheel-steps in contact [N].
+    /// Mean F_x over all wheel-steps in contact \[N\].
     pub mean_longitudinal_force: f64,
     /// Wheel-steps in full slip.
     pub saturated_steps: usize,
