@@ -14,8 +14,10 @@ use sim::ball_drop::{
     METHOD_NAMES, sphere_mass,
 };
 
+use crate::errors::bad_input;
+use crate::output::{self, RunOutput};
+use crate::plot;
 use crate::plot::{Panel, Series};
-use crate::{output, plot};
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -288,29 +290,33 @@ pub fn summary(p: &Prepared, r: &BallDropResult) -> Value {
     })
 }
 
+/// The files a ball-drop run writes (one run's output set).
+const OUTPUT_SET: &[&str] = &["timeseries.csv", "summary.json", "ball_drop.png"];
+
 /// `dyncontact run FILE` for `kind = "ball_drop"`.
 pub fn run(text: &str, out: &Path, json: bool, integrator: Option<&str>) -> Result<()> {
-    let prepared = parse(text, integrator)?;
+    let prepared = parse(text, integrator).map_err(bad_input)?;
+    let run_out = RunOutput::create(out, OUTPUT_SET)?;
     let result = prepared
         .scenario
         .simulate(true)
         .map_err(|e| anyhow!("ball drop: {e}"))?;
     let summary = summary(&prepared, &result);
-    output::ensure_dir(out)?;
     output::write_csv(
-        &out.join("timeseries.csv"),
+        &run_out.path("timeseries.csv"),
         &["t", "z", "v", "a", "approach", "force", "energy"],
         result
             .samples
             .iter()
             .map(|s| vec![s.t, s.z, s.v, s.a, s.approach, s.force, s.energy]),
     )?;
-    output::write_json(&out.join("summary.json"), &summary)?;
+    output::write_json(&run_out.path("summary.json"), &summary)?;
     if prepared.plot {
-        write_plot(&out.join("ball_drop.png"), &result)?;
+        write_plot(&run_out.path("ball_drop.png"), &result)?;
     }
+    run_out.commit()?;
     if json {
-        println!("{}", serde_json::to_string_pretty(&summary)?);
+        println!("{}", output::json_text(&summary)?);
     } else {
         print_summary(&prepared, &result);
         println!(

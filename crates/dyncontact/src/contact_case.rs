@@ -15,7 +15,7 @@ use halfspace::{
 };
 use serde::{Deserialize, Serialize};
 
-use crate::output;
+use crate::output::{self, RunOutput};
 use crate::plot;
 
 /// The case file.
@@ -1053,13 +1053,25 @@ pub fn print_summary(s: &ContactSummary) {
     }
 }
 
-/// Write pressure.csv, pressure.png and summary.json into `dir`.
-pub fn write_outputs(dir: &Path, outcome: &CaseOutcome) -> Result<()> {
-    output::ensure_dir(dir)?;
+/// Every file `contact --out` may write (one run's output set).
+pub const OUTPUT_SET: &[&str] = &[
+    "pressure.csv",
+    "pressure.png",
+    "pressure_profile.png",
+    "summary.json",
+    "traction.csv",
+    "traction_x.png",
+    "traction_y.png",
+    "adhesion_slip.png",
+];
+
+/// Write pressure.csv, pressure.png, pressure_profile.png and summary.json (and the tangential
+/// files) into the run's output set.
+pub fn write_outputs(dir: &RunOutput, outcome: &CaseOutcome) -> Result<()> {
     let sol = &outcome.solution;
     let g = sol.grid;
     output::write_csv(
-        &dir.join("pressure.csv"),
+        &dir.path("pressure.csv"),
         &["x", "y", "p"],
         (0..g.len()).map(|k| {
             let (x, y) = g.centre(k);
@@ -1068,7 +1080,7 @@ pub fn write_outputs(dir: &Path, outcome: &CaseOutcome) -> Result<()> {
     )?;
     let mpa: Vec<f64> = sol.pressure.iter().map(|p| p * 1e-6).collect();
     plot::heatmap(
-        &dir.join("pressure.png"),
+        &dir.path("pressure.png"),
         "contact pressure",
         "x [mm]",
         "y [mm]",
@@ -1083,11 +1095,11 @@ pub fn write_outputs(dir: &Path, outcome: &CaseOutcome) -> Result<()> {
             values: &mpa,
         },
     )?;
-    plot::panels(&dir.join("pressure_profile.png"), &[profile_panel(outcome)])?;
+    plot::panels(&dir.path("pressure_profile.png"), &[profile_panel(outcome)])?;
     if let Some(t) = &outcome.tangential {
         write_tangential_outputs(dir, t)?;
     }
-    output::write_json(&dir.join("summary.json"), &outcome.summary)
+    output::write_json(&dir.path("summary.json"), &outcome.summary)
 }
 
 /// State code of an element in outputs: 0 exterior, 1 adhesion, 2 slip.
@@ -1100,10 +1112,10 @@ fn state_code(s: ElementState) -> f64 {
 }
 
 /// traction.csv, traction_x.png, traction_y.png and adhesion_slip.png.
-fn write_tangential_outputs(dir: &Path, t: &TangentialSolution) -> Result<()> {
+fn write_tangential_outputs(dir: &RunOutput, t: &TangentialSolution) -> Result<()> {
     let g = t.grid;
     output::write_csv(
-        &dir.join("traction.csv"),
+        &dir.path("traction.csv"),
         &["x", "y", "px", "py", "state", "slip_x", "slip_y"],
         (0..g.len()).map(|k| {
             let (x, y) = g.centre(k);
@@ -1142,7 +1154,7 @@ fn write_tangential_outputs(dir: &Path, t: &TangentialSolution) -> Result<()> {
         ),
     ] {
         plot::heatmap(
-            &dir.join(name),
+            &dir.path(name),
             title,
             "x [mm]",
             "y [mm]",

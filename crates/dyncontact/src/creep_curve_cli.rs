@@ -14,7 +14,8 @@ use halfspace::{
 use serde::Serialize;
 
 use crate::contact_case::{self, TangentialTask};
-use crate::output;
+use crate::errors::{BadInput, bad_input};
+use crate::output::{self, RunOutput};
 use crate::plot;
 
 /// Parse `start:stop:count` into `count` equally spaced values (count ≥ 1; count = 1 gives
@@ -98,21 +99,26 @@ pub fn run(
     let flags = ["--creepage-x", "--creepage-y", "--spin"];
     let chosen: Vec<usize> = (0..3).filter(|&i| sweeps[i].is_some()).collect();
     if chosen.len() != 1 {
-        bail!("give exactly one of --creepage-x, --creepage-y, --spin (start:stop:count)");
+        return Err(BadInput::new(
+            "give exactly one of --creepage-x, --creepage-y, --spin (start:stop:count)",
+        ));
     }
     let which = chosen[0];
-    let values = parse_range(sweeps[which].expect("chosen"), flags[which])?;
-    let case = contact_case::parse(text, base)?;
+    let values = parse_range(sweeps[which].expect("chosen"), flags[which]).map_err(bad_input)?;
+    let case = contact_case::parse(text, base).map_err(bad_input)?;
     let mu = case
         .mu
-        .ok_or_else(|| anyhow!("[friction]: a creep curve needs `mu`"))?;
+        .ok_or_else(|| BadInput::new("[friction]: a creep curve needs `mu`"))?;
     let base_creep = match case.tangential.map(|t| t.task) {
         None => Creepages::default(),
         Some(TangentialTask::Rolling(RollingLoad::Creepages(c))) => c,
-        Some(_) => bail!(
-            "[kinematics]: a creep curve sweeps creepages; give creepages (the unswept ones are held) or omit [kinematics]"
-        ),
+        Some(_) => {
+            return Err(BadInput::new(
+                "[kinematics]: a creep curve sweeps creepages; give creepages (the unswept ones are held) or omit [kinematics]",
+            ));
+        }
     };
+    let run_out = RunOutput::create(out, OUTPUT_SET)?;
     let mut normal_solver =
         NormalSolver::new(case.grid, case.material).map_err(|e| anyhow!("{e}"))?;
     let normal = normal_solver
@@ -175,9 +181,10 @@ pub fn run(
         exact_time_s: exact_time,
         points,
     };
-    write(out, &curve, which)?;
+    write(&run_out, &curve, which)?;
+    run_out.commit()?;
     if json {
-        println!("{}", serde_json::to_string_pretty(&curve)?);
+        println!("{}", output::json_text(&curve)?);
     } else {
         print_table(&curve, which);
         println!(
@@ -223,11 +230,13 @@ fn print_table(c: &CreepCurve, which: usize) {
     }
 }
 
-fn write(dir: &Path, c: &CreepCurve, which: usize) -> Result<()> {
-    output::ensure_dir(dir)?;
+/// The files `creep-curve` writes (one run's output set).
+const OUTPUT_SET: &[&str] = &["creep_curve.csv", "creep_curve.json", "creep_curve.png"];
+
+fn write(dir: &RunOutput, c: &CreepCurve, which: usize) -> Result<()> {
     let nan = |v: Option<f64>| v.unwrap_or(f64::NAN);
     output::write_csv(
-        &dir.join("creep_curve.csv"),
+        &dir.path("creep_curve.csv"),
         &[
             "creepage_x",
             "creepage_y",
@@ -259,7 +268,7 @@ fn write(dir: &Path, c: &CreepCurve, which: usize) -> Result<()> {
             ]
         }),
     )?;
-    output::write_json(&dir.join("creep_curve.json"), c)?;
+    output::write_json(&dir.path("creep_curve.json"), c)?;
     let lim = c.mu * c.normal_force;
     let pick = |p: &CurvePoint, k: usize| -> Option<f64> {
         match (k, which == 0) {
@@ -290,7 +299,7 @@ fn write(dir: &Path, c: &CreepCurve, which: usize) -> Result<()> {
     let comp = if which == 0 { "F_x" } else { "F_y" };
     let unit = if which == 2 { " [1/m]" } else { "" };
     plot::panels(
-        &dir.join("creep_curve.png"),
+        &dir.path("creep_curve.png"),
         &[plot::Panel {
             title: format!("creep force {comp} against {}", c.variable),
             x_label: format!("{}{unit}", c.variable),

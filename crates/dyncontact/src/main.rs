@@ -2,6 +2,8 @@
 //!
 //! Subcommands: `run` (a scenario file, or the built-in default), `contact` (a quasi-static
 //! normal contact case), `bench` (performance tables).
+//!
+//! Exit codes (see [`errors`]): 0 success, 1 the run failed or was interrupted, 2 bad input.
 
 mod ball_drop_cli;
 mod bench;
@@ -10,22 +12,27 @@ mod bench_tangential;
 mod bridge;
 mod contact_case;
 mod creep_curve_cli;
+mod errors;
+mod interrupt;
 mod modes_cli;
 mod moving_load_cli;
 mod output;
 mod plot;
 mod vehicle_bridge_cli;
+mod vehicle_bridge_output;
 
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result, anyhow, bail};
 use clap::{Parser, Subcommand, ValueEnum};
 
-/// The built-in default scenario of `dyncontact run`.
-const DEFAULT_SCENARIO: &str = include_str!("../scenarios/default.toml");
+use errors::bad_input;
+
+/// The built-in default scenario of `dyncontact run` (the example file itself, embedded).
+const DEFAULT_SCENARIO: &str = vehicle_bridge_cli::DEFAULT;
 /// Scenario kinds `run` understands (keep in step with `run_scenario`).
 const SCENARIO_KINDS: &[&str] = &["ball_drop", "contact", "moving_load", "vehicle_bridge"];
-const DEFAULT_SCENARIO_PATH: &str = "crates/dyncontact/scenarios/default.toml";
+const DEFAULT_SCENARIO_PATH: &str = "examples/vehicle_bridge_default.toml";
 
 #[derive(Parser)]
 #[command(
@@ -127,10 +134,12 @@ enum BenchTarget {
 
 fn main() {
     restore_default_sigpipe();
+    interrupt::install();
     if let Err(e) = run_cli() {
         eprintln!("error: {e:#}");
-        std::process::exit(1);
+        std::process::exit(errors::exit_code(&e));
     }
+    std::process::exit(errors::EXIT_OK);
 }
 
 /// Let `dyncontact ... | head` end quietly like other Unix tools instead of panicking on a
@@ -187,7 +196,9 @@ fn run_cli() -> Result<()> {
 }
 
 fn read(path: &Path) -> Result<String> {
-    std::fs::read_to_string(path).with_context(|| format!("cannot read {}", path.display()))
+    std::fs::read_to_string(path)
+        .with_context(|| format!("cannot read {}", path.display()))
+        .map_err(bad_input)
 }
 
 fn base_dir(path: &Path) -> &Path {
@@ -207,8 +218,20 @@ fn run_scenario(
             (DEFAULT_SCENARIO.to_string(), PathBuf::from("."))
         }
     };
+    let kind = scenario_kind(&text, integrator).map_err(bad_input)?;
+    match kind.as_str() {
+        "ball_drop" => ball_drop_cli::run(&text, out, json, integrator),
+        "contact" => run_contact(&text, &base, json, Some(out)),
+        "moving_load" => moving_load_cli::run(&text, out, json),
+        "vehicle_bridge" => vehicle_bridge_cli::run(&text, out, json),
+        other => unreachable!("scenario_kind checked `kind` = {other}"),
+    }
+}
+
+/// The scenario's `kind` (checked against [`SCENARIO_KINDS`] and `--integrator`).
+fn scenario_kind(text: &str, integrator: Option<&str>) -> Result<String> {
     let table: toml::Table =
-        toml::from_str(&text).map_err(|e| anyhow!("invalid scenario file: {e}"))?;
+        toml::from_str(text).map_err(|e| anyhow!("invalid scenario file: {e}"))?;
     let kind = match table.get("kind") {
         Some(toml::Value::String(k)) => k.clone(),
         Some(other) => bail!("`kind` must be a string, found {other}"),
@@ -217,6 +240,12 @@ fn run_scenario(
             SCENARIO_KINDS.join(", ")
         ),
     };
+    if !SCENARIO_KINDS.contains(&kind.as_str()) {
+        bail!(
+            "unknown `kind` = \"{kind}\" (known kinds: {})",
+            SCENARIO_KINDS.join(", ")
+        );
+    }
     if let Some(name) = integrator
         && kind != "ball_drop"
     {
@@ -224,28 +253,23 @@ fn run_scenario(
             "--integrator {name}: kind = \"{kind}\" does not take --integrator; set its integrator in the scenario file"
         );
     }
-    match kind.as_str() {
-        "ball_drop" => ball_drop_cli::run(&text, out, json, integrator),
-        "contact" => run_contact(&text, &base, json, Some(out)),
-        "moving_load" => moving_load_cli::run(&text, out, json),
-        "vehicle_bridge" => vehicle_bridge_cli::run(&text, out, json),
-        other => bail!(
-            "unknown `kind` = \"{other}\" (known kinds: {})",
-            SCENARIO_KINDS.join(", ")
-        ),
-    }
+    Ok(kind)
 }
 
 fn run_contact(text: &str, base: &Path, json: bool, out: Option<&Path>) -> Result<()> {
-    let case = contact_case::parse(text, base)?;
+    let case = contact_case::parse(text, base).map_err(bad_input)?;
+    let run_out = out
+        .map(|dir| output::RunOutput::create(dir, contact_case::OUTPUT_SET))
+        .transpose()?;
     let outcome = contact_case::solve(&case)?;
     if json {
-        println!("{}", serde_json::to_string_pretty(&outcome.summary)?);
+        println!("{}", output::json_text(&outcome.summary)?);
     } else {
         contact_case::print_summary(&outcome.summary);
     }
-    if let Some(dir) = out {
-        contact_case::write_outputs(dir, &outcome)?;
+    if let (Some(dir), Some(run_out)) = (out, run_out) {
+        contact_case::write_outputs(&run_out, &outcome)?;
+        run_out.commit()?;
         if !json {
             println!(
                 "wrote {}/pressure.csv, pressure.png, pressure_profile.png, summary.json",

@@ -7,7 +7,9 @@ use beam::Derivative;
 use serde::Serialize;
 
 use crate::bridge::{self, Bridge};
-use crate::{output, plot};
+use crate::errors::bad_input;
+use crate::output::{self, RunOutput};
+use crate::plot;
 
 #[derive(Debug, Serialize)]
 pub struct ModeRow {
@@ -72,8 +74,7 @@ pub fn print_table(s: &ModesSummary) {
 }
 
 /// Write `mode_shapes.csv` (x and w_1 … w_m at 401 points) and `modes.png` (first 6 modes).
-pub fn write_outputs(dir: &Path, b: &Bridge) -> Result<()> {
-    output::ensure_dir(dir)?;
+pub fn write_outputs(dir: &RunOutput, b: &Bridge) -> Result<()> {
     let n = b.basis.n_modes();
     let length = b.basis.length();
     let samples = 401;
@@ -102,9 +103,9 @@ pub fn write_outputs(dir: &Path, b: &Bridge) -> Result<()> {
             )
         })
         .collect();
-    output::write_csv(&dir.join("mode_shapes.csv"), &header, rows)?;
+    output::write_csv(&dir.path("mode_shapes.csv"), &header, rows)?;
     plot::panels(
-        &dir.join("modes.png"),
+        &dir.path("modes.png"),
         &[plot::Panel {
             title: "mass-normalised mode shapes".into(),
             x_label: "x [m]".into(),
@@ -114,17 +115,24 @@ pub fn write_outputs(dir: &Path, b: &Bridge) -> Result<()> {
     )
 }
 
+/// The files `modes --out` writes (one run's output set).
+const OUTPUT_SET: &[&str] = &["mode_shapes.csv", "modes.png", "modes.json"];
+
 pub fn run(text: &str, json: bool, out: Option<&Path>) -> Result<()> {
-    let b = read_bridge(text)?;
+    let b = read_bridge(text).map_err(bad_input)?;
+    let run_out = out
+        .map(|dir| RunOutput::create(dir, OUTPUT_SET))
+        .transpose()?;
     let s = summary(&b);
     if json {
-        println!("{}", serde_json::to_string_pretty(&s)?);
+        println!("{}", output::json_text(&s)?);
     } else {
         print_table(&s);
     }
-    if let Some(dir) = out {
-        write_outputs(dir, &b)?;
-        output::write_json(&dir.join("modes.json"), &s)?;
+    if let (Some(dir), Some(run_out)) = (out, run_out) {
+        write_outputs(&run_out, &b)?;
+        output::write_json(&run_out.path("modes.json"), &s)?;
+        run_out.commit()?;
         if !json {
             println!(
                 "wrote {}/mode_shapes.csv, modes.png, modes.json",

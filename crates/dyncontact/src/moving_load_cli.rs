@@ -10,7 +10,9 @@ use integrate::structural::StructuralMethod;
 use serde::{Deserialize, Serialize};
 
 use crate::bridge::{Bridge, BridgeSpec};
-use crate::{output, plot};
+use crate::errors::bad_input;
+use crate::output::{self, RunOutput};
+use crate::plot;
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -131,8 +133,17 @@ fn loads(spec: &LoadSpec) -> Result<MovingLoads> {
     MovingLoads::train(axles, spec.speed).map_err(|e| anyhow!("[load] {e}"))
 }
 
-/// Run a moving-load scenario from its text; writes outputs into `out`.
-pub fn run(text: &str, out: &Path, json: bool) -> Result<()> {
+/// A parsed and validated moving-load scenario.
+struct Prepared {
+    bridge: Bridge,
+    loads: MovingLoads,
+    name: String,
+    dt: f64,
+    settings: MovingLoadSettings,
+    points: Vec<f64>,
+}
+
+fn prepare(text: &str) -> Result<Prepared> {
     let scenario: MovingLoadScenario =
         toml::from_str(text).map_err(|e| anyhow!("invalid scenario file: {e}"))?;
     if scenario.kind != "moving_load" {
@@ -178,6 +189,30 @@ pub fn run(text: &str, out: &Path, json: bool) -> Result<()> {
         output_every: every,
         integrator: modal_integrator,
     };
+    Ok(Prepared {
+        bridge,
+        loads,
+        name,
+        dt,
+        settings,
+        points,
+    })
+}
+
+/// The files a moving-load run writes (one run's output set).
+const OUTPUT_SET: &[&str] = &["timeseries.csv", "summary.json", "midspan_deflection.png"];
+
+/// Run a moving-load scenario from its text; writes outputs into `out`.
+pub fn run(text: &str, out: &Path, json: bool) -> Result<()> {
+    let Prepared {
+        bridge,
+        loads,
+        name,
+        dt,
+        settings,
+        points,
+    } = prepare(text).map_err(bad_input)?;
+    let run_out = RunOutput::create(out, OUTPUT_SET)?;
     let start = Instant::now();
     let response = simulate_moving_loads(
         bridge.basis.as_ref(),
@@ -189,12 +224,12 @@ pub fn run(text: &str, out: &Path, json: bool) -> Result<()> {
     .map_err(|e| anyhow!("moving-load run: {e}"))?;
     let wall = start.elapsed().as_secs_f64();
     let summary = summarise(&bridge, &loads, &response, &name, dt, wall)?;
-    output::ensure_dir(out)?;
-    write_timeseries(out, &loads, &response)?;
-    plot_outputs(out, &loads, &response, &summary)?;
-    output::write_json(&out.join("summary.json"), &summary)?;
+    write_timeseries(&run_out, &loads, &response)?;
+    plot_outputs(&run_out, &loads, &response, &summary)?;
+    output::write_json(&run_out.path("summary.json"), &summary)?;
+    run_out.commit()?;
     if json {
-        println!("{}", serde_json::to_string_pretty(&summary)?);
+        println!("{}", output::json_text(&summary)?);
     } else {
         print_summary(&summary);
         println!(
@@ -290,7 +325,11 @@ fn print_summary(s: &MovingLoadSummary) {
     );
 }
 
-fn write_timeseries(dir: &Path, loads: &MovingLoads, r: &beam::MovingLoadResponse) -> Result<()> {
+fn write_timeseries(
+    dir: &RunOutput,
+    loads: &MovingLoads,
+    r: &beam::MovingLoadResponse,
+) -> Result<()> {
     let np = r.n_points();
     let mut header = vec!["t".to_string(), "load_position".to_string()];
     for (p, x) in r.points.iter().enumerate() {
@@ -305,7 +344,7 @@ fn write_timeseries(dir: &Path, loads: &MovingLoads, r: &beam::MovingLoadRespons
     }
     let names: Vec<&str> = header.iter().map(String::as_str).collect();
     output::write_csv(
-        &dir.join("timeseries.csv"),
+        &dir.path("timeseries.csv"),
         &names,
         r.times.iter().enumerate().map(|(i, &t)| {
             let mut row = vec![t, loads.speed() * t];
@@ -324,7 +363,7 @@ fn write_timeseries(dir: &Path, loads: &MovingLoads, r: &beam::MovingLoadRespons
 }
 
 fn plot_outputs(
-    dir: &Path,
+    dir: &RunOutput,
     loads: &MovingLoads,
     r: &beam::MovingLoadResponse,
     s: &MovingLoadSummary,
@@ -344,7 +383,7 @@ fn plot_outputs(
         .map(|(i, &t)| (loads.speed() * t, mm(r.quasi_static_deflection[i * np])))
         .collect();
     plot::panels(
-        &dir.join("midspan_deflection.png"),
+        &dir.path("midspan_deflection.png"),
         &[plot::Panel {
             title: format!(
                 "midspan deflection, v = {} m/s, DAF = {}",

@@ -54,39 +54,106 @@ const COLOURS: [RGBColor; 6] = [
     RGBColor(23, 190, 207),
 ];
 
-fn range_of(values: impl Iterator<Item = f64>) -> (f64, f64) {
+/// Largest magnitude a plotted value may have (beyond it the axis labels and the line
+/// rasterisation lose meaning; such panels are skipped with a note).
+const PLOT_MAX_MAGNITUDE: f64 = 1e100;
+/// Points drawn per series at most: longer series are thinned by keeping each bucket's
+/// minimum and maximum (peaks survive), which bounds the plotting time.
+const PLOT_MAX_POINTS: usize = 8000;
+
+/// The axis range of `values` with a 4 % margin (non-finite values ignored), or why the panel
+/// cannot be plotted.
+fn range_of(values: impl Iterator<Item = f64>) -> Result<(f64, f64), String> {
     let (lo, hi) = values
         .filter(|v| v.is_finite())
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
             (lo.min(v), hi.max(v))
         });
     if !lo.is_finite() {
-        return (0.0, 1.0);
+        return Ok((0.0, 1.0));
     }
-    if hi - lo <= 1e-300_f64.max(1e-12 * hi.abs()) {
-        let pad = if lo == 0.0 { 1.0 } else { 0.05 * lo.abs() };
-        return (lo - pad, hi + pad);
+    let big = lo.abs().max(hi.abs());
+    if big > PLOT_MAX_MAGNITUDE || (big > 0.0 && big < 1.0 / PLOT_MAX_MAGNITUDE) {
+        return Err(format!(
+            "values up to {big:.3e} in magnitude are outside the plottable range [1e-100, 1e100]"
+        ));
+    }
+    if hi - lo <= 1e-12 * big {
+        let pad = if big == 0.0 { 1.0 } else { 0.05 * big };
+        return Ok((lo - pad, hi + pad));
     }
     let pad = 0.04 * (hi - lo);
-    (lo - pad, hi + pad)
+    Ok((lo - pad, hi + pad))
+}
+
+/// The finite runs of a series (a NaN or infinity breaks the line), each thinned to at most
+/// [`PLOT_MAX_POINTS`] points by per-bucket minimum and maximum.
+fn drawable_segments(points: &[(f64, f64)]) -> Vec<Vec<(f64, f64)>> {
+    let mut segments = Vec::new();
+    for run in points.split(|(x, y)| !(x.is_finite() && y.is_finite())) {
+        if run.is_empty() {
+            continue;
+        }
+        if run.len() <= PLOT_MAX_POINTS {
+            segments.push(run.to_vec());
+            continue;
+        }
+        let buckets = PLOT_MAX_POINTS / 2;
+        let size = run.len().div_ceil(buckets);
+        let mut thin = Vec::with_capacity(2 * buckets + 1);
+        for chunk in run.chunks(size) {
+            let (mut i_lo, mut i_hi) = (0, 0);
+            for (i, p) in chunk.iter().enumerate() {
+                if p.1 < chunk[i_lo].1 {
+                    i_lo = i;
+                }
+                if p.1 > chunk[i_hi].1 {
+                    i_hi = i;
+                }
+            }
+            thin.push(chunk[i_lo.min(i_hi)]);
+            if i_lo != i_hi {
+                thin.push(chunk[i_lo.max(i_hi)]);
+            }
+        }
+        thin.push(run[run.len() - 1]);
+        segments.push(thin);
+    }
+    segments
 }
 
 fn draw_panel<DB: DrawingBackend>(area: &DrawingArea<DB, Shift>, panel: &Panel) -> Result<()>
 where
     DB::ErrorType: 'static,
 {
-    let (x0, x1) = range_of(
+    let ranges = range_of(
         panel
             .series
             .iter()
             .flat_map(|s| s.points.iter().map(|p| p.0)),
-    );
-    let (y0, y1) = range_of(
-        panel
-            .series
-            .iter()
-            .flat_map(|s| s.points.iter().map(|p| p.1)),
-    );
+    )
+    .and_then(|x| {
+        range_of(
+            panel
+                .series
+                .iter()
+                .flat_map(|s| s.points.iter().map(|p| p.1)),
+        )
+        .map(|y| (x, y))
+    });
+    let ((x0, x1), (y0, y1)) = match ranges {
+        Ok(r) => r,
+        Err(why) => {
+            eprintln!("note: plot \"{}\" skipped: {why}", panel.title);
+            area.draw(&Text::new(
+                format!("{}: not plotted ({why})", panel.title),
+                (20, 40),
+                ("sans-serif", 16),
+            ))
+            .map_err(|e| anyhow!("plot: {e}"))?;
+            return Ok(());
+        }
+    };
     let mut chart = ChartBuilder::on(area)
         .caption(&panel.title, ("sans-serif", 20))
         .margin(12)
@@ -103,16 +170,25 @@ where
         .map_err(|e| anyhow!("plot: {e}"))?;
     for (k, s) in panel.series.iter().enumerate() {
         let colour = COLOURS[k % COLOURS.len()];
-        chart
-            .draw_series(LineSeries::new(
-                s.points.iter().copied(),
-                colour.stroke_width(2),
-            ))
-            .map_err(|e| anyhow!("plot: {e}"))?
-            .label(s.label.clone())
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
-            });
+        let segments = drawable_segments(&s.points);
+        let mut first = true;
+        for segment in segments.iter().chain(
+            // An all-NaN series still gets its legend entry.
+            segments.is_empty().then_some(&Vec::new()),
+        ) {
+            let drawn = chart
+                .draw_series(LineSeries::new(
+                    segment.iter().copied(),
+                    colour.stroke_width(2),
+                ))
+                .map_err(|e| anyhow!("plot: {e}"))?;
+            if first {
+                drawn.label(s.label.clone()).legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
+                });
+                first = false;
+            }
+        }
     }
     if panel.series.len() > 1 || panel.series.iter().any(|s| !s.label.is_empty()) {
         chart
@@ -238,6 +314,19 @@ pub fn heatmap(
                 .fold(vmax, f64::min)
                 .min(0.0);
             let span = if vmax > vmin { vmax - vmin } else { 1.0 };
+            if !span.is_finite() || vmax.abs().max(vmin.abs()) > PLOT_MAX_MAGNITUDE {
+                eprintln!(
+                    "note: plot \"{}\" skipped: values out of the plottable range",
+                    self.title
+                );
+                root.draw(&Text::new(
+                    format!("{}: not plotted (values out of range)", self.title),
+                    (20, 40),
+                    ("sans-serif", 16),
+                ))
+                .map_err(|e| anyhow!("plot: {e}"))?;
+                return Ok(());
+            }
             let (main, bar) = root.split_horizontally(root.dim_in_pixel().0 - 150);
             let (x0, x1) = (f.x0, f.x0 + f.nx as f64 * f.dx);
             let (y0, y1) = (f.y0, f.y0 + f.ny as f64 * f.dy);
@@ -304,4 +393,55 @@ pub fn heatmap(
         field,
     };
     render_with(path, (900, 760), |r| d.on(r), |r| d.on(r))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ranges_are_sane_or_refused() {
+        assert_eq!(range_of([0.0, 0.0].into_iter()), Ok((-1.0, 1.0)));
+        assert_eq!(range_of([f64::NAN].into_iter()), Ok((0.0, 1.0)));
+        let (lo, hi) = range_of([1.0, 2.0, f64::INFINITY].into_iter()).unwrap();
+        assert!((lo - 0.96).abs() < 1e-12 && (hi - 2.04).abs() < 1e-12);
+        assert!(range_of([1e-299, 2e-299].into_iter()).is_err());
+        assert!(range_of([0.0, 3e290].into_iter()).is_err());
+    }
+
+    #[test]
+    fn segments_break_at_non_finite_points_and_keep_peaks() {
+        let s = drawable_segments(&[(0.0, 1.0), (1.0, f64::NAN), (2.0, 3.0), (3.0, 4.0)]);
+        assert_eq!(s, vec![vec![(0.0, 1.0)], vec![(2.0, 3.0), (3.0, 4.0)]]);
+        let long: Vec<(f64, f64)> = (0..100_000)
+            .map(|i| (i as f64, if i == 54_321 { 9.0 } else { 0.0 }))
+            .collect();
+        let thin = drawable_segments(&long);
+        assert!(thin[0].len() <= PLOT_MAX_POINTS + 1);
+        assert!(thin[0].contains(&(54_321.0, 9.0)));
+        assert!(thin[0].windows(2).all(|w| w[0].0 < w[1].0));
+    }
+
+    #[test]
+    fn degenerate_panels_render() {
+        let dir = tempfile::tempdir().unwrap();
+        let panel = |points: Vec<(f64, f64)>| Panel {
+            title: "t".into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            series: vec![Series::new("s", points)],
+        };
+        let path = dir.path().join("p.png");
+        panels(
+            &path,
+            &[
+                panel(vec![(0.0, 0.0), (1.0, 0.0)]),
+                panel(vec![(0.0, 1e-299), (1.0, 3e290)]),
+                panel(vec![(f64::NAN, f64::NAN)]),
+                panel(vec![]),
+            ],
+        )
+        .unwrap();
+        assert!(std::fs::metadata(&path).unwrap().len() > 1000);
+    }
 }

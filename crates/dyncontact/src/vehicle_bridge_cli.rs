@@ -6,19 +6,21 @@
 use std::path::Path;
 use std::time::Instant;
 
-use anyhow::{Context, Result, anyhow, bail};
+use anyhow::{Result, anyhow, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use integrate::structural::StructuralMethod;
 use serde::{Deserialize, Serialize};
-use sim::vehicle_bridge::traction::{TractionDrive, TractionMethod, TractionSample, TractionSpec};
+use sim::vehicle_bridge::traction::{TractionDrive, TractionMethod, TractionSpec};
 use sim::vehicle_bridge::{
     ContactGeometry, ContactModel, CouplingSolver, CouplingSpec, GRAVITY, Irregularity, Radau5Spec,
     Scenario, Simulation, TrackSpectrum, WheelSpec,
 };
 
 use crate::bridge::BridgeSpec;
-use crate::output;
-use crate::plot::{self, Panel, Series};
+use crate::errors::{BadInput, bad_input};
+use crate::interrupt::{self, Interrupted};
+use crate::output::{self, RunOutput};
+use crate::vehicle_bridge_output::{self, OUTPUT_SET, Recorder, Row};
 
 /// The vehicle-bridge default scenario (also the built-in default of `dyncontact run`).
 pub const DEFAULT: &str = include_str!("../../../examples/vehicle_bridge_default.toml");
@@ -386,15 +388,6 @@ fn irregularity(spec: &IrregularitySpec, wheel_radius: f64) -> Result<Irregulari
     Ok(irr)
 }
 
-/// One recorded row of the time series.
-struct Row {
-    t: f64,
-    midspan: (f64, f64, f64),
-    wheels: Vec<sim::vehicle_bridge::WheelSample>,
-    iterations: usize,
-    traction: Vec<TractionSample>,
-}
-
 /// The `traction` object of summary.json.
 #[derive(Serialize)]
 pub struct TractionSummaryJson {
@@ -418,7 +411,8 @@ pub struct ContactSummary {
     pub max_force: f64,
     pub min_force: f64,
     pub loss_of_contact_events: usize,
-    pub max_pressure: f64,
+    /// Largest contact pressure \[Pa\]; `null` for rigid contact (a constraint has no pressure).
+    pub max_pressure: Option<f64>,
 }
 
 #[derive(Serialize)]
@@ -441,6 +435,14 @@ pub struct SolverSummary {
 
 #[derive(Serialize)]
 pub struct Summary {
+    /// False when the run stopped early (interrupted, or a step failed): the outputs then hold
+    /// the steps up to `time_reached` and timeseries.csv is named timeseries.partial.csv.
+    pub completed: bool,
+    /// Simulated time reached \[s\] (the end time when `completed`).
+    pub time_reached: f64,
+    /// Why the run stopped early (absent when `completed`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stopped_by: Option<String>,
     pub max_midspan_deflection: f64,
     pub max_midspan_acceleration: f64,
     pub max_quasi_static_deflection: Option<f64>,
@@ -457,33 +459,32 @@ pub struct Summary {
 /// The result of a run.
 pub struct Outcome {
     pub summary: Summary,
+    /// The recorded rows, thinned to at most [`vehicle_bridge_output::PLOT_ROWS`] (for plots).
     rows: Vec<Row>,
     snapshots: Vec<(f64, Vec<(f64, f64)>)>,
+    /// The error of the step that failed, when one did (the outputs up to it are written).
+    failure: Option<anyhow::Error>,
 }
+
+/// Most steps a run may take (checked before the run starts).
+const MAX_STEPS: f64 = 1e9;
 
 /// Runs a scenario, recording every `every`-th step and `snapshots` pressure snapshots of the
-/// first wheel along its passage over the span.
+/// first wheel along its passage over the span (no CSV: as `bench` uses it).
 pub fn simulate(scenario: Scenario, every: usize, snapshots: usize) -> Result<Outcome> {
-    simulate_with(scenario, None, every, snapshots)
+    simulate_full(scenario, None, None, every, snapshots, None)
 }
 
-/// [`simulate`] with longitudinal friction (`traction`, from [`parse_traction`]).
-pub fn simulate_with(
-    scenario: Scenario,
-    traction: Option<TractionSpec>,
-    every: usize,
-    snapshots: usize,
-) -> Result<Outcome> {
-    simulate_full(scenario, traction, None, every, snapshots)
-}
-
-/// [`simulate_with`] with an optional Radau5 integration (from [`parse_radau5`]).
+/// [`simulate`] with longitudinal friction (`traction`, from [`parse_traction`]), an optional
+/// Radau5 integration (from [`parse_radau5`]) and the recorded rows streamed to `csv`. Stops
+/// early, with `completed = false`, on an interrupt (Ctrl-C) or a failed step.
 pub fn simulate_full(
     scenario: Scenario,
     traction: Option<TractionSpec>,
     radau: Option<Radau5Spec>,
     every: usize,
     snapshots: usize,
+    csv: Option<&Path>,
 ) -> Result<Outcome> {
     let length = scenario.bridge.length();
     let model = match scenario.contact {
@@ -497,16 +498,22 @@ pub fn simulate_full(
         scenario.method.name().to_string()
     };
     let start = Instant::now();
-    let mut sim = Simulation::new(scenario)?;
+    let mut sim = Simulation::new(scenario).map_err(|e| bad_input(e.into()))?;
     if let Some(spec) = radau {
-        sim.set_radau5(spec)?;
+        sim.set_radau5(spec).map_err(|e| bad_input(e.into()))?;
     }
     if let Some(spec) = traction {
-        sim.set_traction(spec)?;
+        sim.set_traction(spec).map_err(|e| bad_input(e.into()))?;
     }
     let end = sim.end_time();
     let dt = sim.scenario().dt;
-    let steps = (end / dt - 1e-9).ceil().max(0.0) as usize;
+    let steps = (end / dt - 1e-9).ceil().max(0.0);
+    if steps > MAX_STEPS {
+        return Err(BadInput::new(format!(
+            "[integrator] dt = {dt:e} s over the run of {end} s gives {steps:.3e} steps: at most {MAX_STEPS:e} are allowed (raise dt or shorten the run)"
+        )));
+    }
+    let steps = steps as usize;
     let bar = ProgressBar::with_draw_target(Some(steps as u64), ProgressDrawTarget::stderr());
     bar.set_style(
         ProgressStyle::with_template("{bar:40} {pos}/{len} steps, {elapsed} (eta {eta})")
@@ -518,33 +525,34 @@ pub fn simulate_full(
         .map(|i| length * (i as f64 + 0.5) / snapshots as f64)
         .collect();
     let mut next_snap = 0;
-    let mut rows = Vec::with_capacity(steps / every + 2);
     let mut snaps = Vec::new();
     let mut max_qs = None::<f64>;
-    let record = |sim: &Simulation, rows: &mut Vec<Row>, iterations: usize| {
-        rows.push(Row {
-            t: sim.t(),
-            midspan: sim.output_point_response(),
-            wheels: sim.wheels().to_vec(),
-            iterations,
-            traction: sim
-                .traction()
-                .map(|t| t.samples().to_vec())
-                .unwrap_or_default(),
-        });
-    };
-    record(&sim, &mut rows, 0);
+    let mut recorder = Recorder::new(&sim, csv)?;
+    recorder.record(&sim, 0)?;
     let mut buf = Vec::new();
+    let mut stopped_by = None;
+    let mut failure = None;
+    let mut last_its = 0;
+    interrupt::stop_at_next_step();
     for step in 1..=steps {
+        if interrupt::requested() {
+            stopped_by = Some("interrupt (SIGINT or SIGTERM)".to_string());
+            break;
+        }
         let before = sim.stats().iterations;
-        sim.step()
-            .with_context(|| format!("step {step} of {steps}"))?;
+        if let Err(e) = sim.step() {
+            let e = anyhow::Error::from(e).context(format!("step {step} of {steps}"));
+            stopped_by = Some(format!("{e:#}"));
+            failure = Some(e);
+            break;
+        }
         let its = sim.stats().iterations - before;
+        last_its = its;
         if let Some(qs) = sim.quasi_static_output_deflection()? {
             max_qs = Some(max_qs.unwrap_or(0.0).max(qs.abs()));
         }
         if step % every == 0 || step == steps {
-            record(&sim, &mut rows, its);
+            recorder.record(&sim, its)?;
         }
         let x = x0 + speed * sim.t();
         if next_snap < snap_positions.len() && x >= snap_positions[next_snap] {
@@ -556,38 +564,33 @@ pub fn simulate_full(
             bar.set_position(step as u64);
         }
     }
+    // A run stopped early ends its time series at the last completed step.
+    if stopped_by.is_some() && recorder.last_t != Some(sim.t()) {
+        recorder.record(&sim, last_its)?;
+    }
     bar.finish_and_clear();
     let wall = start.elapsed().as_secs_f64();
     let stats = sim.stats();
-    let fold = |f: &dyn Fn(&Row) -> f64| rows.iter().map(f).fold(0.0f64, |m, v| m.max(v.abs()));
-    let max_defl = fold(&|r| r.midspan.0);
-    let max_acc = fold(&|r| r.midspan.2);
-    let forces = rows
-        .iter()
-        .flat_map(|r| r.wheels.iter().map(|w| w.contact.force));
-    let (min_f, max_f) = forces.fold((f64::INFINITY, 0.0f64), |(lo, hi), f| {
-        (lo.min(f), hi.max(f))
-    });
-    let all = |f: &dyn Fn(&sim::vehicle_bridge::WheelSample) -> f64| {
-        rows.iter()
-            .flat_map(|r| r.wheels.iter().map(f))
-            .fold(0.0f64, |m, v| m.max(v.abs()))
-    };
+    let (m, rows) = recorder.finish()?;
+    let max_defl = m.midspan_deflection;
     let summary = Summary {
+        completed: stopped_by.is_none(),
+        time_reached: sim.t(),
+        stopped_by,
         max_midspan_deflection: max_defl,
-        max_midspan_acceleration: max_acc,
+        max_midspan_acceleration: m.midspan_acceleration,
         max_quasi_static_deflection: max_qs,
         dynamic_amplification: max_qs.filter(|q| *q > 0.0).map(|q| max_defl / q),
         contact: ContactSummary {
             model: model.to_string(),
-            max_force: max_f,
-            min_force: min_f,
+            max_force: m.max_force,
+            min_force: m.min_force,
             loss_of_contact_events: sim.loss_of_contact_events(),
-            max_pressure: all(&|w| w.contact.max_pressure),
+            max_pressure: (model != "rigid").then_some(m.max_pressure),
         },
         vehicle: VehicleSummary {
-            max_body_acceleration: all(&|w| w.body_acceleration),
-            max_wheel_acceleration: all(&|w| w.wheel_acceleration),
+            max_body_acceleration: m.body_acceleration,
+            max_wheel_acceleration: m.wheel_acceleration,
             static_wheel_loads: sim.static_loads().to_vec(),
         },
         solver: SolverSummary {
@@ -624,181 +627,8 @@ pub fn simulate_full(
         summary,
         rows,
         snapshots: snaps,
+        failure,
     })
-}
-
-/// Writes timeseries.csv, summary.json and the plots into `dir`.
-pub fn write_outputs(dir: &Path, outcome: &Outcome) -> Result<()> {
-    output::ensure_dir(dir)?;
-    let nw = outcome.rows.first().map_or(0, |r| r.wheels.len());
-    let with_traction = outcome.summary.traction.is_some();
-    let mut header: Vec<String> = [
-        "t",
-        "midspan_deflection",
-        "midspan_velocity",
-        "midspan_acceleration",
-        "iterations",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect();
-    let per_wheel = [
-        "position",
-        "wheel_z",
-        "body_z",
-        "body_acceleration",
-        "contact_force",
-        "approach",
-        "patch_length",
-        "patch_width",
-        "max_pressure",
-        "longitudinal_force",
-        "creepage",
-        "adhesion_fraction",
-    ];
-    let per_wheel = &per_wheel[..if with_traction { 12 } else { 9 }];
-    for k in 0..nw {
-        for &name in per_wheel {
-            header.push(if nw == 1 {
-                name.to_string()
-            } else {
-                format!("{name}_{k}")
-            });
-        }
-    }
-    let header_refs: Vec<&str> = header.iter().map(|s| s.as_str()).collect();
-    output::write_csv(
-        &dir.join("timeseries.csv"),
-        &header_refs,
-        outcome.rows.iter().map(|r| {
-            let mut row = vec![
-                r.t,
-                r.midspan.0,
-                r.midspan.1,
-                r.midspan.2,
-                r.iterations as f64,
-            ];
-            for w in &r.wheels {
-                row.extend([
-                    w.position,
-                    w.wheel_displacement,
-                    w.body_displacement,
-                    w.body_acceleration,
-                    w.contact.force,
-                    w.approach,
-                    w.contact.patch_length,
-                    w.contact.patch_width,
-                    w.contact.max_pressure,
-                ]);
-            }
-            for (k, t) in r.traction.iter().enumerate() {
-                // Insert after wheel k's 9 columns (the first 5 columns are global).
-                let at = 5 + (k + 1) * 12 - 3;
-                row.splice(
-                    at..at,
-                    [t.longitudinal_force, t.creepage, t.adhesion_fraction],
-                );
-            }
-            row
-        }),
-    )?;
-    output::write_json(&dir.join("summary.json"), &outcome.summary)?;
-    let wheel_series = |f: &dyn Fn(&Row, usize) -> (f64, f64), name: &str| -> Vec<Series> {
-        (0..nw)
-            .map(|k| {
-                Series::new(
-                    if nw == 1 {
-                        name.to_string()
-                    } else {
-                        format!("{name} {k}")
-                    },
-                    outcome.rows.iter().map(|r| f(r, k)).collect(),
-                )
-            })
-            .collect()
-    };
-    plot::panels(
-        &dir.join("contact_force.png"),
-        &[Panel {
-            title: "Contact force against wheel position".into(),
-            x_label: "position [m]".into(),
-            y_label: "force [kN]".into(),
-            series: wheel_series(
-                &|r, k| (r.wheels[k].position, 1e-3 * r.wheels[k].contact.force),
-                "wheel",
-            ),
-        }],
-    )?;
-    plot::panels(
-        &dir.join("midspan.png"),
-        &[
-            Panel {
-                title: "Bridge deflection at the output point".into(),
-                x_label: "t [s]".into(),
-                y_label: "deflection [mm]".into(),
-                series: vec![Series::new(
-                    "w",
-                    outcome
-                        .rows
-                        .iter()
-                        .map(|r| (r.t, 1e3 * r.midspan.0))
-                        .collect(),
-                )],
-            },
-            Panel {
-                title: "Bridge acceleration at the output point".into(),
-                x_label: "t [s]".into(),
-                y_label: "acceleration [m/s²]".into(),
-                series: vec![Series::new(
-                    "a",
-                    outcome.rows.iter().map(|r| (r.t, r.midspan.2)).collect(),
-                )],
-            },
-        ],
-    )?;
-    let mut motion = wheel_series(&|r, k| (r.t, 1e3 * r.wheels[k].wheel_displacement), "wheel");
-    motion.extend(wheel_series(
-        &|r, k| (r.t, 1e3 * r.wheels[k].body_displacement),
-        "body",
-    ));
-    plot::panels(
-        &dir.join("vehicle.png"),
-        &[
-            Panel {
-                title: "Wheel and body displacement (down)".into(),
-                x_label: "t [s]".into(),
-                y_label: "z [mm]".into(),
-                series: motion,
-            },
-            Panel {
-                title: "Body acceleration".into(),
-                x_label: "t [s]".into(),
-                y_label: "acceleration [m/s²]".into(),
-                series: wheel_series(&|r, k| (r.t, r.wheels[k].body_acceleration), "body"),
-            },
-        ],
-    )?;
-    if !outcome.snapshots.is_empty() {
-        plot::panels(
-            &dir.join("pressure.png"),
-            &[Panel {
-                title: "Contact pressure along the track centreline (wheel 0)".into(),
-                x_label: "ξ (along track, from the wheel) [mm]".into(),
-                y_label: "pressure [MPa]".into(),
-                series: outcome
-                    .snapshots
-                    .iter()
-                    .map(|(x, p)| {
-                        Series::new(
-                            format!("x = {x:.2} m"),
-                            p.iter().map(|(xi, p)| (1e3 * xi, 1e-6 * p)).collect(),
-                        )
-                    })
-                    .collect(),
-            }],
-        )?;
-    }
-    Ok(())
 }
 
 /// Prints the readable summary.
@@ -815,12 +645,15 @@ pub fn print_summary(s: &Summary) {
         println!("  dynamic amplification {d:.4}");
     }
     println!(
-        "  contact ({}): force {:.1} … {:.1} N, {} loss-of-contact events, max pressure {:.1} MPa",
+        "  contact ({}): force {:.1} … {:.1} N, {} loss-of-contact events{}",
         s.contact.model,
         s.contact.min_force,
         s.contact.max_force,
         s.contact.loss_of_contact_events,
-        1e-6 * s.contact.max_pressure
+        s.contact
+            .max_pressure
+            .map(|p| format!(", max pressure {:.1} MPa", 1e-6 * p))
+            .unwrap_or_default()
     );
     println!(
         "  vehicle: max body acceleration {:.4} m/s²",
@@ -846,19 +679,47 @@ pub fn print_summary(s: &Summary) {
 
 /// `dyncontact run` for `kind = "vehicle_bridge"`.
 pub fn run(text: &str, out: &Path, json: bool) -> Result<()> {
-    let (scenario, every, snapshots) = parse(text)?;
-    let traction = parse_traction(text)?;
-    let radau = parse_radau5(text)?;
-    let outcome = simulate_full(scenario, traction, radau, every, snapshots)?;
-    write_outputs(out, &outcome)?;
+    let (scenario, every, snapshots) = parse(text).map_err(bad_input)?;
+    let traction = parse_traction(text).map_err(bad_input)?;
+    let radau = parse_radau5(text).map_err(bad_input)?;
+    let run_out = RunOutput::create(out, OUTPUT_SET)?;
+    let outcome = simulate_full(
+        scenario,
+        traction,
+        radau,
+        every,
+        snapshots,
+        Some(&run_out.path("timeseries.csv")),
+    )?;
+    output::write_json(&run_out.path("summary.json"), &outcome.summary)?;
+    vehicle_bridge_output::write_plots(&run_out, &outcome.rows, &outcome.snapshots)?;
+    let completed = outcome.summary.completed;
+    if !completed {
+        run_out.mark_partial("timeseries.csv")?;
+    }
+    run_out.commit()?;
     if json {
-        println!("{}", serde_json::to_string_pretty(&outcome.summary)?);
+        println!("{}", output::json_text(&outcome.summary)?);
     } else {
         print_summary(&outcome.summary);
         println!(
-            "wrote {}/timeseries.csv, summary.json, contact_force.png, midspan.png, vehicle.png, pressure.png",
-            out.display()
+            "wrote {}/{}, summary.json, contact_force.png, midspan.png, vehicle.png, pressure.png",
+            out.display(),
+            if completed {
+                "timeseries.csv"
+            } else {
+                "timeseries.partial.csv"
+            }
         );
+    }
+    if let Some(e) = outcome.failure {
+        return Err(e.context("the outputs up to the failed step are written (completed = false)"));
+    }
+    if !completed {
+        return Err(Interrupted {
+            time_reached: outcome.summary.time_reached,
+        }
+        .into());
     }
     Ok(())
 }

@@ -1,8 +1,9 @@
 //! `dyncontact run` with `kind = "ball_drop"`: JSON keys, output files, the `--integrator`
 //! override, and errors that name the offending key.
 
-use std::path::Path;
-use std::process::{Command, Output};
+mod support;
+
+use support::{dyncontact, write};
 
 /// The brief's scenario, shortened to 0.3 s (one impact at t = √(2h/g) = 0.1428 s).
 const VALID: &str = r#"
@@ -25,19 +26,6 @@ method = "radau5"
 rtol = 1e-8
 atol = 1e-12
 "#;
-
-fn dyncontact(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_dyncontact"))
-        .args(args)
-        .output()
-        .expect("binary runs")
-}
-
-fn write(dir: &Path, name: &str, text: &str) -> String {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path.to_string_lossy().into_owned()
-}
 
 /// The summary has the documented keys, the impact matches the energy-balance closed form
 /// printed next to it (peak force within 2e-6 at rtol 1e-8, rebound = impact speed within

@@ -3,21 +3,11 @@
 // Reference roots are copied verbatim (20 digits) from references.md §D1.6.
 #![allow(clippy::excessive_precision)]
 
-use std::path::Path;
-use std::process::{Command, Output};
+mod support;
 
-fn dyncontact(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_dyncontact"))
-        .args(args)
-        .output()
-        .expect("binary runs")
-}
+use std::process::Output;
 
-fn write(dir: &Path, name: &str, text: &str) -> String {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path.to_string_lossy().into_owned()
-}
+use support::{dyncontact, write};
 
 const BRIDGE: &str = r#"
 [bridge]

@@ -1,8 +1,11 @@
 //! The `contact` subcommand end to end: valid cases, JSON keys, output files, and errors that
 //! name the offending key.
 
+mod support;
+
 use std::path::Path;
-use std::process::{Command, Output};
+
+use support::{dyncontact, write};
 
 const VALID: &str = r#"
 [body1]
@@ -27,23 +30,10 @@ tol = 1e-8
 max_iter = 200
 "#;
 
-fn dyncontact(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_dyncontact"))
-        .args(args)
-        .output()
-        .expect("binary runs")
-}
-
-fn write_case(dir: &Path, name: &str, text: &str) -> String {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path.to_string_lossy().into_owned()
-}
-
 #[test]
 fn json_summary_has_the_documented_keys_and_matches_hertz() {
     let dir = tempfile::tempdir().unwrap();
-    let case = write_case(dir.path(), "case.toml", VALID);
+    let case = write(dir.path(), "case.toml", VALID);
     let out = dyncontact(&["contact", &case, "--json"]);
     assert!(
         out.status.success(),
@@ -83,7 +73,7 @@ fn json_summary_has_the_documented_keys_and_matches_hertz() {
 #[test]
 fn out_dir_gets_csv_png_and_summary() {
     let dir = tempfile::tempdir().unwrap();
-    let case = write_case(dir.path(), "case.toml", VALID);
+    let case = write(dir.path(), "case.toml", VALID);
     let out_dir = dir.path().join("result");
     let out = dyncontact(&["contact", &case, "--out", out_dir.to_str().unwrap()]);
     assert!(
@@ -107,26 +97,18 @@ fn out_dir_gets_csv_png_and_summary() {
 #[test]
 fn prescribed_approach_and_force_are_consistent_through_the_cli() {
     let dir = tempfile::tempdir().unwrap();
-    let by_force = dyncontact(&[
-        "contact",
-        &write_case(dir.path(), "f.toml", VALID),
-        "--json",
-    ]);
+    let by_force = dyncontact(&["contact", &write(dir.path(), "f.toml", VALID), "--json"]);
     let v: serde_json::Value = serde_json::from_slice(&by_force.stdout).unwrap();
     let approach = v["approach"].as_f64().unwrap();
     let text = VALID.replace("force = 1000.0", &format!("approach = {approach:e}"));
-    let by_approach = dyncontact(&[
-        "contact",
-        &write_case(dir.path(), "a.toml", &text),
-        "--json",
-    ]);
+    let by_approach = dyncontact(&["contact", &write(dir.path(), "a.toml", &text), "--json"]);
     let w: serde_json::Value = serde_json::from_slice(&by_approach.stdout).unwrap();
     assert!((w["normal_force"].as_f64().unwrap() / 1000.0 - 1.0).abs() < 1e-6);
 }
 
 /// Run an invalid variant of the valid case and return its error message.
 fn error_of(dir: &Path, text: &str) -> String {
-    let case = write_case(dir, "bad.toml", text);
+    let case = write(dir, "bad.toml", text);
     let out = dyncontact(&["contact", &case, "--json"]);
     assert!(!out.status.success(), "accepted invalid case:\n{text}");
     assert!(out.stdout.is_empty(), "printed output for an invalid case");
@@ -238,21 +220,13 @@ fn tabulated_gap_reproduces_the_analytic_one() {
         "kind = \"quadratic\"\nA = 50.0\nB = 50.0",
         "kind = \"table\"\nfile = \"gap.csv\"",
     );
-    let table = dyncontact(&[
-        "contact",
-        &write_case(dir.path(), "t.toml", &text),
-        "--json",
-    ]);
+    let table = dyncontact(&["contact", &write(dir.path(), "t.toml", &text), "--json"]);
     assert!(
         table.status.success(),
         "{}",
         String::from_utf8_lossy(&table.stderr)
     );
-    let analytic = dyncontact(&[
-        "contact",
-        &write_case(dir.path(), "q.toml", VALID),
-        "--json",
-    ]);
+    let analytic = dyncontact(&["contact", &write(dir.path(), "q.toml", VALID), "--json"]);
     let a: serde_json::Value = serde_json::from_slice(&analytic.stdout).unwrap();
     let t: serde_json::Value = serde_json::from_slice(&table.stdout).unwrap();
     let (ta, aa) = (

@@ -1,31 +1,9 @@
 //! `dyncontact contact` with [friction]/[kinematics] and `dyncontact creep-curve` end to end:
 //! JSON keys, CONTACT's published example outputs, output files, and key-naming errors.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod support;
 
-fn dyncontact(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_dyncontact"))
-        .args(args)
-        .output()
-        .expect("binary runs")
-}
-
-fn example(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples")
-        .join(name)
-}
-
-fn json_of(args: &[&str]) -> serde_json::Value {
-    let out = dyncontact(args);
-    assert!(
-        out.status.success(),
-        "{args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    serde_json::from_slice(&out.stdout).unwrap()
-}
+use support::{dyncontact, example, json_of, write};
 
 fn f(v: &serde_json::Value, key: &str) -> f64 {
     v[key]
@@ -75,12 +53,6 @@ fn cattaneo_example_reproduces_contact() {
     assert!((f(&v, "tangential_force_x") + 3.21839).abs() < 1e-4);
 }
 
-fn write_case(dir: &Path, name: &str, text: &str) -> String {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path.to_string_lossy().into_owned()
-}
-
 /// The tractcurv ellipse on a 20 × 20 grid (fast in debug builds).
 const ELLIPSE: &str = r#"
 [body1]
@@ -109,7 +81,7 @@ fn methods_and_forces_through_the_cli() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
     // Linear theory at ξ = 1e-5: |F_x| = G c² C11 ξ = 243.3 N (references.md §C4.2, 4 digits).
-    let lin = write_case(
+    let lin = write(
         d,
         "lin.toml",
         &format!("{ELLIPSE}[kinematics]\ncreepage_x = 1e-5\nmethod = \"linear\"\n"),
@@ -119,12 +91,12 @@ fn methods_and_forces_through_the_cli() {
     assert!(v["spin_moment"].is_null());
     // FASTSIM and exact at ξ = 1e-3 agree within 0.03 μF_n (fastsim.rs measures 0.014 on
     // 44 × 44; this grid is coarser).
-    let fs = write_case(
+    let fs = write(
         d,
         "fs.toml",
         &format!("{ELLIPSE}[kinematics]\ncreepage_x = 1e-3\nmethod = \"fastsim\"\n"),
     );
-    let ex = write_case(
+    let ex = write(
         d,
         "ex.toml",
         &format!("{ELLIPSE}[kinematics]\ncreepage_x = 1e-3\n"),
@@ -135,7 +107,7 @@ fn methods_and_forces_through_the_cli() {
     let (ff, fe) = (f(&vf, "tangential_force_x"), f(&ve, "tangential_force_x"));
     assert!(((ff - fe) / lim).abs() < 0.03, "{ff} {fe}");
     // Prescribing the exact solver's force gives back its creepage (Newton, 1 %).
-    let fo = write_case(
+    let fo = write(
         d,
         "fo.toml",
         &format!("{ELLIPSE}[kinematics]\nforce_x = {fe}\n"),
@@ -190,7 +162,7 @@ fn invalid_kinematics_name_the_key() {
         ("[kinematics]\nforce_x = 1e6\n", "friction limit"),
     ];
     for (extra, needle) in cases {
-        let path = write_case(d, "bad.toml", &format!("{ELLIPSE}{extra}"));
+        let path = write(d, "bad.toml", &format!("{ELLIPSE}{extra}"));
         let out = dyncontact(&["contact", &path]);
         assert!(!out.status.success(), "accepted: {extra}");
         let err = String::from_utf8_lossy(&out.stderr);
@@ -199,18 +171,17 @@ fn invalid_kinematics_name_the_key() {
     // [friction] problems.
     let no_mu = ELLIPSE.replace("mu = 0.3", "") + "[kinematics]\ncreepage_x = 1e-3\n";
     let err =
-        String::from_utf8_lossy(&dyncontact(&["contact", &write_case(d, "b.toml", &no_mu)]).stderr)
+        String::from_utf8_lossy(&dyncontact(&["contact", &write(d, "b.toml", &no_mu)]).stderr)
             .into_owned();
     assert!(err.contains("mu"), "{err}");
     let neg = ELLIPSE.replace("mu = 0.3", "mu = -0.3") + "[kinematics]\ncreepage_x = 1e-3\n";
-    let err =
-        String::from_utf8_lossy(&dyncontact(&["contact", &write_case(d, "b.toml", &neg)]).stderr)
-            .into_owned();
+    let err = String::from_utf8_lossy(&dyncontact(&["contact", &write(d, "b.toml", &neg)]).stderr)
+        .into_owned();
     assert!(err.contains("`mu` = -0.3"), "{err}");
     let no_friction =
         ELLIPSE.replace("[friction]\nmu = 0.3\n", "") + "[kinematics]\ncreepage_x = 1e-3\n";
     let err = String::from_utf8_lossy(
-        &dyncontact(&["contact", &write_case(d, "b.toml", &no_friction)]).stderr,
+        &dyncontact(&["contact", &write(d, "b.toml", &no_friction)]).stderr,
     )
     .into_owned();
     assert!(err.contains("[friction]"), "{err}");
@@ -220,7 +191,7 @@ fn invalid_kinematics_name_the_key() {
 fn creep_curve_writes_three_methods() {
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
-    let case = write_case(d, "case.toml", ELLIPSE);
+    let case = write(d, "case.toml", ELLIPSE);
     let out = d.join("curve");
     let v = json_of(&[
         "creep-curve",
@@ -276,7 +247,7 @@ fn dissimilar_materials_run_the_outer_loop() {
     // A rigid ball on a soft body (K = −0.3): the exact method alternates normal and
     // tangential solves; the prescribed force is met and the outer count is reported.
     let dir = tempfile::tempdir().unwrap();
-    let case = write_case(
+    let case = write(
         dir.path(),
         "k.toml",
         r#"

@@ -1,20 +1,10 @@
 //! `dyncontact run` with `kind = "vehicle_bridge"`, end to end.
 
+mod support;
+
 use std::path::Path;
-use std::process::{Command, Output};
 
-fn dyncontact(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_dyncontact"))
-        .args(args)
-        .output()
-        .expect("binary runs")
-}
-
-fn write(dir: &Path, name: &str, text: &str) -> String {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path.to_string_lossy().into_owned()
-}
+use support::{dyncontact, write};
 
 /// A 600 kg wheel with 100 kN total load crawling (2 m/s) over a heavily damped (ζ = 0.7)
 /// simply supported bridge, Hertz contact.

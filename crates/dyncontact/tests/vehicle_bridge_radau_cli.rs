@@ -1,15 +1,11 @@
 //! `[integrator] method = "radau5"` from the CLI: the example runs, reports radau5, and its
 //! peak contact force agrees with a generalized-α run of the same file at Δt = 2.5e-5 s.
 
-use std::path::Path;
-use std::process::{Command, Output};
+mod support;
 
-fn dyncontact(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_dyncontact"))
-        .args(args)
-        .output()
-        .expect("binary runs")
-}
+use std::path::Path;
+
+use support::dyncontact;
 
 fn run_json(dir: &Path, name: &str, text: &str) -> Result<serde_json::Value, String> {
     let path = dir.join(name);

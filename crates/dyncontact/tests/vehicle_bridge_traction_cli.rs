@@ -1,17 +1,14 @@
 //! `dyncontact run` with a `[traction]` section, end to end: the time-series columns, the
 //! summary's `traction` object against Kalker's linear theory, and input errors naming the key.
 
+mod support;
+
 use std::path::Path;
-use std::process::{Command, Output};
+use std::process::Output;
 
 use halfspace::{Hertz, Material, creep_coefficients};
 
-fn dyncontact(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_dyncontact"))
-        .args(args)
-        .output()
-        .expect("binary runs")
-}
+use support::dyncontact;
 
 /// A 600 kg wheel with 50 kN extra load rolling at 2 m/s on the rigid approach track (it starts
 /// at x = −3 m and runs 0.5 s, so the normal force is the static W = 600·9.81 + 50e3 N).

@@ -1,0 +1,331 @@
+//! Outputs of a vehicle–bridge run: the time series streamed to `timeseries.csv` as the run
+//! advances (nothing of it is held in memory for the whole run), running maxima for the
+//! summary, a thinned copy of the rows (at most [`PLOT_ROWS`]) for the plots, and the plots.
+
+use std::path::Path;
+
+use anyhow::Result;
+use sim::vehicle_bridge::traction::TractionSample;
+use sim::vehicle_bridge::{Simulation, WheelSample};
+
+use crate::output::{CsvStream, RunOutput};
+use crate::plot::{self, Panel, Series};
+
+/// Every file a vehicle–bridge run writes (one run's output set).
+pub const OUTPUT_SET: &[&str] = &[
+    "timeseries.csv",
+    "summary.json",
+    "contact_force.png",
+    "midspan.png",
+    "vehicle.png",
+    "pressure.png",
+];
+
+/// Rows kept for the plots: beyond this the kept rows are thinned by 2 (every other one) and
+/// the recording stride doubles, so a run of any length plots in bounded time and memory.
+pub const PLOT_ROWS: usize = 20_000;
+
+/// One recorded row of the time series.
+pub struct Row {
+    pub t: f64,
+    pub midspan: (f64, f64, f64),
+    pub wheels: Vec<WheelSample>,
+    pub iterations: usize,
+    pub traction: Vec<TractionSample>,
+}
+
+impl Row {
+    fn of(sim: &Simulation, iterations: usize) -> Row {
+        Row {
+            t: sim.t(),
+            midspan: sim.output_point_response(),
+            wheels: sim.wheels().to_vec(),
+            iterations,
+            traction: sim
+                .traction()
+                .map(|t| t.samples().to_vec())
+                .unwrap_or_default(),
+        }
+    }
+
+    /// The CSV columns of this row (see [`header`]).
+    fn values(&self, out: &mut Vec<f64>) {
+        out.clear();
+        out.extend([
+            self.t,
+            self.midspan.0,
+            self.midspan.1,
+            self.midspan.2,
+            self.iterations as f64,
+        ]);
+        for (k, w) in self.wheels.iter().enumerate() {
+            out.extend([
+                w.position,
+                w.wheel_displacement,
+                w.body_displacement,
+                w.body_acceleration,
+                w.contact.force,
+                w.approach,
+                w.contact.patch_length,
+                w.contact.patch_width,
+                w.contact.max_pressure,
+            ]);
+            if let Some(t) = self.traction.get(k) {
+                out.extend([t.longitudinal_force, t.creepage, t.adhesion_fraction]);
+            }
+        }
+    }
+}
+
+/// The CSV header for `nw` wheels (with the three traction columns per wheel when
+/// `with_traction`).
+fn header(nw: usize, with_traction: bool) -> Vec<String> {
+    let mut header: Vec<String> = [
+        "t",
+        "midspan_deflection",
+        "midspan_velocity",
+        "midspan_acceleration",
+        "iterations",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    let per_wheel = [
+        "position",
+        "wheel_z",
+        "body_z",
+        "body_acceleration",
+        "contact_force",
+        "approach",
+        "patch_length",
+        "patch_width",
+        "max_pressure",
+        "longitudinal_force",
+        "creepage",
+        "adhesion_fraction",
+    ];
+    let per_wheel = &per_wheel[..if with_traction { 12 } else { 9 }];
+    for k in 0..nw {
+        for &name in per_wheel {
+            header.push(if nw == 1 {
+                name.to_string()
+            } else {
+                format!("{name}_{k}")
+            });
+        }
+    }
+    header
+}
+
+/// Maxima over the recorded rows (the summary's numbers).
+#[derive(Clone, Copy)]
+pub struct Maxima {
+    pub midspan_deflection: f64,
+    pub midspan_acceleration: f64,
+    pub min_force: f64,
+    pub max_force: f64,
+    pub max_pressure: f64,
+    pub body_acceleration: f64,
+    pub wheel_acceleration: f64,
+}
+
+/// Records every `every`-th step: streams it to the CSV, folds it into the maxima, and keeps a
+/// thinned copy for the plots.
+pub struct Recorder {
+    csv: Option<CsvStream>,
+    line: Vec<f64>,
+    pub maxima: Maxima,
+    /// Rows for the plots: every `stride`-th recorded row.
+    pub plot_rows: Vec<Row>,
+    stride: usize,
+    recorded: usize,
+    /// Time of the last recorded row \[s\].
+    pub last_t: Option<f64>,
+}
+
+impl Recorder {
+    /// A recorder streaming to `csv` (none: maxima and plot rows only, as in `bench`).
+    pub fn new(sim: &Simulation, csv: Option<&Path>) -> Result<Recorder> {
+        let csv = match csv {
+            Some(path) => {
+                let names = header(sim.wheels().len(), sim.traction().is_some());
+                let refs: Vec<&str> = names.iter().map(String::as_str).collect();
+                Some(CsvStream::create(path, &refs)?)
+            }
+            None => None,
+        };
+        Ok(Recorder {
+            csv,
+            line: Vec::new(),
+            maxima: Maxima {
+                midspan_deflection: 0.0,
+                midspan_acceleration: 0.0,
+                min_force: f64::INFINITY,
+                max_force: 0.0,
+                max_pressure: 0.0,
+                body_acceleration: 0.0,
+                wheel_acceleration: 0.0,
+            },
+            plot_rows: Vec::new(),
+            stride: 1,
+            recorded: 0,
+            last_t: None,
+        })
+    }
+
+    /// Record the current state (`iterations`: coupling iterations of the last step).
+    pub fn record(&mut self, sim: &Simulation, iterations: usize) -> Result<()> {
+        let row = Row::of(sim, iterations);
+        if let Some(csv) = &mut self.csv {
+            row.values(&mut self.line);
+            csv.row(&self.line)?;
+        }
+        let m = &mut self.maxima;
+        m.midspan_deflection = m.midspan_deflection.max(row.midspan.0.abs());
+        m.midspan_acceleration = m.midspan_acceleration.max(row.midspan.2.abs());
+        for w in &row.wheels {
+            m.min_force = m.min_force.min(w.contact.force);
+            m.max_force = m.max_force.max(w.contact.force);
+            m.max_pressure = m.max_pressure.max(w.contact.max_pressure.abs());
+            m.body_acceleration = m.body_acceleration.max(w.body_acceleration.abs());
+            m.wheel_acceleration = m.wheel_acceleration.max(w.wheel_acceleration.abs());
+        }
+        self.last_t = Some(row.t);
+        if self.recorded.is_multiple_of(self.stride) {
+            self.plot_rows.push(row);
+            if self.plot_rows.len() > PLOT_ROWS {
+                let mut k = 0;
+                self.plot_rows.retain(|_| {
+                    k += 1;
+                    (k - 1) % 2 == 0
+                });
+                self.stride *= 2;
+            }
+        }
+        self.recorded += 1;
+        Ok(())
+    }
+
+    /// Flush the CSV to disk.
+    pub fn finish(self) -> Result<(Maxima, Vec<Row>)> {
+        if let Some(csv) = self.csv {
+            csv.finish()?;
+        }
+        Ok((self.maxima, self.plot_rows))
+    }
+}
+
+/// contact_force.png, midspan.png, vehicle.png and pressure.png (when there are snapshots).
+pub fn write_plots(
+    dir: &RunOutput,
+    rows: &[Row],
+    snapshots: &[(f64, Vec<(f64, f64)>)],
+) -> Result<()> {
+    let nw = rows.first().map_or(0, |r| r.wheels.len());
+    let wheel_series = |f: &dyn Fn(&Row, usize) -> (f64, f64), name: &str| -> Vec<Series> {
+        (0..nw)
+            .map(|k| {
+                Series::new(
+                    if nw == 1 {
+                        name.to_string()
+                    } else {
+                        format!("{name} {k}")
+                    },
+                    rows.iter().map(|r| f(r, k)).collect(),
+                )
+            })
+            .collect()
+    };
+    plot::panels(
+        &dir.path("contact_force.png"),
+        &[Panel {
+            title: "Contact force against wheel position".into(),
+            x_label: "position [m]".into(),
+            y_label: "force [kN]".into(),
+            series: wheel_series(
+                &|r, k| (r.wheels[k].position, 1e-3 * r.wheels[k].contact.force),
+                "wheel",
+            ),
+        }],
+    )?;
+    plot::panels(
+        &dir.path("midspan.png"),
+        &[
+            Panel {
+                title: "Bridge deflection at the output point".into(),
+                x_label: "t [s]".into(),
+                y_label: "deflection [mm]".into(),
+                series: vec![Series::new(
+                    "w",
+                    rows.iter().map(|r| (r.t, 1e3 * r.midspan.0)).collect(),
+                )],
+            },
+            Panel {
+                title: "Bridge acceleration at the output point".into(),
+                x_label: "t [s]".into(),
+                y_label: "acceleration [m/s²]".into(),
+                series: vec![Series::new(
+                    "a",
+                    rows.iter().map(|r| (r.t, r.midspan.2)).collect(),
+                )],
+            },
+        ],
+    )?;
+    let mut motion = wheel_series(&|r, k| (r.t, 1e3 * r.wheels[k].wheel_displacement), "wheel");
+    motion.extend(wheel_series(
+        &|r, k| (r.t, 1e3 * r.wheels[k].body_displacement),
+        "body",
+    ));
+    plot::panels(
+        &dir.path("vehicle.png"),
+        &[
+            Panel {
+                title: "Wheel and body displacement (down)".into(),
+                x_label: "t [s]".into(),
+                y_label: "z [mm]".into(),
+                series: motion,
+            },
+            Panel {
+                title: "Body acceleration".into(),
+                x_label: "t [s]".into(),
+                y_label: "acceleration [m/s²]".into(),
+                series: wheel_series(&|r, k| (r.t, r.wheels[k].body_acceleration), "body"),
+            },
+        ],
+    )?;
+    if !snapshots.is_empty() {
+        plot::panels(
+            &dir.path("pressure.png"),
+            &[Panel {
+                title: "Contact pressure along the track centreline (wheel 0)".into(),
+                x_label: "ξ (along track, from the wheel) [mm]".into(),
+                y_label: "pressure [MPa]".into(),
+                series: snapshots
+                    .iter()
+                    .map(|(x, p)| {
+                        Series::new(
+                            format!("x = {x:.2} m"),
+                            p.iter().map(|(xi, p)| (1e3 * xi, 1e-6 * p)).collect(),
+                        )
+                    })
+                    .collect(),
+            }],
+        )?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn header_has_the_traction_columns_after_each_wheel() {
+        let h = header(2, true);
+        assert_eq!(h.len(), 5 + 2 * 12);
+        assert_eq!(h[5 + 8], "max_pressure_0");
+        assert_eq!(h[5 + 9], "longitudinal_force_0");
+        assert_eq!(h[5 + 12], "position_1");
+        assert_eq!(header(1, false)[5..7], ["position", "wheel_z"]);
+    }
+}
