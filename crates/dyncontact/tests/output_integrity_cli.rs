@@ -167,7 +167,8 @@ fn a_run_replaces_the_previous_output_set() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
     names.sort();
-    // Hertz contact records no pressure snapshots: the old pressure.png is gone with its set.
+    // The stale partial CSV is gone with its set; pressure.png is the new run's.
+    assert_ne!(std::fs::read(out.join("pressure.png")).unwrap(), b"old");
     assert_eq!(
         names,
         [
@@ -175,6 +176,7 @@ fn a_run_replaces_the_previous_output_set() {
             "contact_force.png",
             "midspan.png",
             "notes.txt",
+            "pressure.png",
             "summary.json",
             "timeseries.csv",
             "vehicle.png"
