@@ -6,14 +6,14 @@
 use std::path::Path;
 use std::time::Instant;
 
-use anyhow::{Context, Result, anyhow, bail};
+use anyhow::{Result, anyhow, bail};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use integrate::structural::StructuralMethod;
 use serde::{Deserialize, Serialize};
 use sim::vehicle_bridge::traction::{TractionDrive, TractionMethod, TractionSample, TractionSpec};
 use sim::vehicle_bridge::{
     ContactGeometry, ContactModel, CouplingSolver, CouplingSpec, GRAVITY, Irregularity, Radau5Spec,
-    Scenario, Simulation, TrackSpectrum, WheelSpec,
+    Scenario, Simulation, TrackSpectrum, WheelSpec, run,
 };
 
 use crate::bridge::BridgeSpec;
@@ -504,23 +504,18 @@ pub fn simulate_full(
     if let Some(spec) = traction {
         sim.set_traction(spec)?;
     }
-    let end = sim.end_time();
-    let dt = sim.scenario().dt;
-    let steps = (end / dt - 1e-9).ceil().max(0.0) as usize;
+    let steps = sim.planned_steps();
     let bar = ProgressBar::with_draw_target(Some(steps as u64), ProgressDrawTarget::stderr());
     bar.set_style(
         ProgressStyle::with_template("{bar:40} {pos}/{len} steps, {elapsed} (eta {eta})")
             .map_err(|e| anyhow!("progress bar: {e}"))?,
     );
-    let x0 = sim.scenario().wheels[0].position;
-    let speed = sim.scenario().speed;
     let snap_positions: Vec<f64> = (0..snapshots)
         .map(|i| length * (i as f64 + 0.5) / snapshots as f64)
         .collect();
     let mut next_snap = 0;
     let mut rows = Vec::with_capacity(steps / every + 2);
     let mut snaps = Vec::new();
-    let mut max_qs = None::<f64>;
     let record = |sim: &Simulation, rows: &mut Vec<Row>, iterations: usize| {
         rows.push(Row {
             t: sim.t(),
@@ -535,59 +530,45 @@ pub fn simulate_full(
     };
     record(&sim, &mut rows, 0);
     let mut buf = Vec::new();
-    for step in 1..=steps {
-        let before = sim.stats().iterations;
-        sim.step()
-            .with_context(|| format!("step {step} of {steps}"))?;
-        let its = sim.stats().iterations - before;
-        if let Some(qs) = sim.quasi_static_output_deflection()? {
-            max_qs = Some(max_qs.unwrap_or(0.0).max(qs.abs()));
+    // The run driver steps the simulation and computes the summary (maxima, amplification);
+    // this observer records the time series and the pressure snapshots.
+    let mut observer = |sim: &Simulation, info: run::StepInfo| {
+        if info.step % every == 0 || info.step == info.steps {
+            record(sim, &mut rows, info.iterations);
         }
-        if step % every == 0 || step == steps {
-            record(&sim, &mut rows, its);
-        }
-        let x = x0 + speed * sim.t();
+        let x = sim.wheel_position(0);
         if next_snap < snap_positions.len() && x >= snap_positions[next_snap] {
             sim.centreline_pressure(0, &mut buf);
             snaps.push((x, buf.clone()));
             next_snap += 1;
         }
-        if step % 64 == 0 {
-            bar.set_position(step as u64);
+        if info.step % 64 == 0 {
+            bar.set_position(info.step as u64);
         }
-    }
+        std::ops::ControlFlow::Continue(())
+    };
+    let run = run::run(&mut sim, &mut observer).map_err(|f| {
+        let step = f.partial.steps_taken + 1;
+        anyhow::Error::new(f.error).context(format!("step {step} of {steps}"))
+    })?;
     bar.finish_and_clear();
     let wall = start.elapsed().as_secs_f64();
-    let stats = sim.stats();
-    let fold = |f: &dyn Fn(&Row) -> f64| rows.iter().map(f).fold(0.0f64, |m, v| m.max(v.abs()));
-    let max_defl = fold(&|r| r.midspan.0);
-    let max_acc = fold(&|r| r.midspan.2);
-    let forces = rows
-        .iter()
-        .flat_map(|r| r.wheels.iter().map(|w| w.contact.force));
-    let (min_f, max_f) = forces.fold((f64::INFINITY, 0.0f64), |(lo, hi), f| {
-        (lo.min(f), hi.max(f))
-    });
-    let all = |f: &dyn Fn(&sim::vehicle_bridge::WheelSample) -> f64| {
-        rows.iter()
-            .flat_map(|r| r.wheels.iter().map(f))
-            .fold(0.0f64, |m, v| m.max(v.abs()))
-    };
+    let stats = run.solver;
     let summary = Summary {
-        max_midspan_deflection: max_defl,
-        max_midspan_acceleration: max_acc,
-        max_quasi_static_deflection: max_qs,
-        dynamic_amplification: max_qs.filter(|q| *q > 0.0).map(|q| max_defl / q),
+        max_midspan_deflection: run.deflection.max_abs(),
+        max_midspan_acceleration: run.acceleration.max_abs(),
+        max_quasi_static_deflection: run.max_quasi_static_deflection,
+        dynamic_amplification: run.dynamic_amplification,
         contact: ContactSummary {
             model: model.to_string(),
-            max_force: max_f,
-            min_force: min_f,
-            loss_of_contact_events: sim.loss_of_contact_events(),
-            max_pressure: all(&|w| w.contact.max_pressure),
+            max_force: run.max_force(),
+            min_force: run.min_force(),
+            loss_of_contact_events: run.loss_of_contact_events,
+            max_pressure: run.max_pressure(),
         },
         vehicle: VehicleSummary {
-            max_body_acceleration: all(&|w| w.body_acceleration),
-            max_wheel_acceleration: all(&|w| w.wheel_acceleration),
+            max_body_acceleration: run.max_body_acceleration(),
+            max_wheel_acceleration: run.max_wheel_acceleration(),
             static_wheel_loads: sim.static_loads().to_vec(),
         },
         solver: SolverSummary {
@@ -618,7 +599,7 @@ pub fn simulate_full(
             }
         }),
         wall_time_s: wall,
-        simulated_time_s: sim.t(),
+        simulated_time_s: run.time_reached,
     };
     Ok(Outcome {
         summary,
