@@ -3,6 +3,7 @@
 //!
 //! Every key is in SI units; unknown keys are errors.
 
+use std::ops::ControlFlow;
 use std::path::Path;
 use std::time::Instant;
 
@@ -13,7 +14,7 @@ use serde::{Deserialize, Serialize};
 use sim::vehicle_bridge::traction::{TractionDrive, TractionMethod, TractionSpec};
 use sim::vehicle_bridge::{
     ContactGeometry, ContactModel, CouplingSolver, CouplingSpec, GRAVITY, Irregularity, Radau5Spec,
-    Scenario, Simulation, TrackSpectrum, WheelSpec,
+    Scenario, Simulation, TrackSpectrum, WheelSpec, run,
 };
 
 use crate::bridge::BridgeSpec;
@@ -505,92 +506,94 @@ pub fn simulate_full(
     if let Some(spec) = traction {
         sim.set_traction(spec).map_err(|e| bad_input(e.into()))?;
     }
-    let end = sim.end_time();
-    let dt = sim.scenario().dt;
-    let steps = (end / dt - 1e-9).ceil().max(0.0);
-    if steps > MAX_STEPS {
+    let steps = sim.planned_steps();
+    let (end, dt) = (sim.end_time(), sim.scenario().dt);
+    if steps as f64 > MAX_STEPS {
         return Err(BadInput::new(format!(
             "[integrator] dt = {dt:e} s over the run of {end} s gives {steps:.3e} steps: at most {MAX_STEPS:e} are allowed (raise dt or shorten the run)"
         )));
     }
-    let steps = steps as usize;
     let bar = ProgressBar::with_draw_target(Some(steps as u64), ProgressDrawTarget::stderr());
     bar.set_style(
         ProgressStyle::with_template("{bar:40} {pos}/{len} steps, {elapsed} (eta {eta})")
             .map_err(|e| anyhow!("progress bar: {e}"))?,
     );
-    let x0 = sim.scenario().wheels[0].position;
-    let speed = sim.scenario().speed;
     let snap_positions: Vec<f64> = (0..snapshots)
         .map(|i| length * (i as f64 + 0.5) / snapshots as f64)
         .collect();
     let mut next_snap = 0;
     let mut snaps = Vec::new();
-    let mut max_qs = None::<f64>;
     let mut recorder = Recorder::new(&sim, csv)?;
     recorder.record(&sim, 0)?;
     let mut buf = Vec::new();
-    let mut stopped_by = None;
-    let mut failure = None;
-    let mut last_its = 0;
+    let mut write_error = None;
     interrupt::stop_at_next_step();
-    for step in 1..=steps {
-        if interrupt::requested() {
-            stopped_by = Some("interrupt (SIGINT or SIGTERM)".to_string());
-            break;
+    // The run driver steps the simulation and computes the summary (maxima, amplification);
+    // this observer streams the time series, takes the pressure snapshots and stops the run
+    // on Ctrl-C.
+    let mut observer = |sim: &Simulation, info: run::StepInfo| {
+        if info.step % every == 0 || info.step == info.steps {
+            if let Err(e) = recorder.record(sim, info.iterations) {
+                write_error = Some(e);
+                return ControlFlow::Break(());
+            }
         }
-        let before = sim.stats().iterations;
-        if let Err(e) = sim.step() {
-            let e = anyhow::Error::from(e).context(format!("step {step} of {steps}"));
-            stopped_by = Some(format!("{e:#}"));
-            failure = Some(e);
-            break;
-        }
-        let its = sim.stats().iterations - before;
-        last_its = its;
-        if let Some(qs) = sim.quasi_static_output_deflection()? {
-            max_qs = Some(max_qs.unwrap_or(0.0).max(qs.abs()));
-        }
-        if step % every == 0 || step == steps {
-            recorder.record(&sim, its)?;
-        }
-        let x = x0 + speed * sim.t();
+        let x = sim.wheel_position(0);
         if next_snap < snap_positions.len() && x >= snap_positions[next_snap] {
             sim.centreline_pressure(0, &mut buf);
             snaps.push((x, buf.clone()));
             next_snap += 1;
         }
-        if step % 64 == 0 {
-            bar.set_position(step as u64);
+        if info.step % 64 == 0 {
+            bar.set_position(info.step as u64);
         }
+        if interrupt::requested() {
+            return ControlFlow::Break(());
+        }
+        ControlFlow::Continue(())
+    };
+    let (run, failure) = match run::run(&mut sim, &mut observer) {
+        Ok(run) => (run, None),
+        Err(f) => {
+            let step = f.partial.steps_taken + 1;
+            let e = anyhow::Error::new(f.error).context(format!("step {step} of {steps}"));
+            (*f.partial, Some(e))
+        }
+    };
+    if let Some(e) = write_error {
+        return Err(e);
     }
     // A run stopped early ends its time series at the last completed step.
-    if stopped_by.is_some() && recorder.last_t != Some(sim.t()) {
-        recorder.record(&sim, last_its)?;
+    if !run.completed && recorder.last_t != Some(sim.t()) {
+        recorder.record(&sim, 0)?;
     }
+    let stopped_by = match &failure {
+        Some(e) => Some(format!("{e:#}")),
+        None if !run.completed => Some("interrupt (SIGINT or SIGTERM)".to_string()),
+        None => None,
+    };
     bar.finish_and_clear();
     let wall = start.elapsed().as_secs_f64();
-    let stats = sim.stats();
-    let (m, rows) = recorder.finish()?;
-    let max_defl = m.midspan_deflection;
+    let stats = run.solver;
+    let rows = recorder.finish()?;
     let summary = Summary {
-        completed: stopped_by.is_none(),
-        time_reached: sim.t(),
+        completed: run.completed,
+        time_reached: run.time_reached,
         stopped_by,
-        max_midspan_deflection: max_defl,
-        max_midspan_acceleration: m.midspan_acceleration,
-        max_quasi_static_deflection: max_qs,
-        dynamic_amplification: max_qs.filter(|q| *q > 0.0).map(|q| max_defl / q),
+        max_midspan_deflection: run.deflection.max_abs(),
+        max_midspan_acceleration: run.acceleration.max_abs(),
+        max_quasi_static_deflection: run.max_quasi_static_deflection,
+        dynamic_amplification: run.dynamic_amplification,
         contact: ContactSummary {
             model: model.to_string(),
-            max_force: m.max_force,
-            min_force: m.min_force,
-            loss_of_contact_events: sim.loss_of_contact_events(),
-            max_pressure: (model != "rigid").then_some(m.max_pressure),
+            max_force: run.max_force(),
+            min_force: run.min_force(),
+            loss_of_contact_events: run.loss_of_contact_events,
+            max_pressure: (model != "rigid").then_some(run.max_pressure()),
         },
         vehicle: VehicleSummary {
-            max_body_acceleration: m.body_acceleration,
-            max_wheel_acceleration: m.wheel_acceleration,
+            max_body_acceleration: run.max_body_acceleration(),
+            max_wheel_acceleration: run.max_wheel_acceleration(),
             static_wheel_loads: sim.static_loads().to_vec(),
         },
         solver: SolverSummary {
@@ -621,7 +624,7 @@ pub fn simulate_full(
             }
         }),
         wall_time_s: wall,
-        simulated_time_s: sim.t(),
+        simulated_time_s: run.time_reached,
     };
     Ok(Outcome {
         summary,

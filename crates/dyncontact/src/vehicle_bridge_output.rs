@@ -1,6 +1,6 @@
 //! Outputs of a vehicle–bridge run: the time series streamed to `timeseries.csv` as the run
-//! advances (nothing of it is held in memory for the whole run), running maxima for the
-//! summary, a thinned copy of the rows (at most [`PLOT_ROWS`]) for the plots, and the plots.
+//! advances (nothing of it is held in memory for the whole run), a thinned copy of the rows (at
+//! most [`PLOT_ROWS`]) for the plots, and the plots.
 
 use std::path::Path;
 
@@ -117,24 +117,11 @@ fn header(nw: usize, with_traction: bool) -> Vec<String> {
     header
 }
 
-/// Maxima over the recorded rows (the summary's numbers).
-#[derive(Clone, Copy)]
-pub struct Maxima {
-    pub midspan_deflection: f64,
-    pub midspan_acceleration: f64,
-    pub min_force: f64,
-    pub max_force: f64,
-    pub max_pressure: f64,
-    pub body_acceleration: f64,
-    pub wheel_acceleration: f64,
-}
-
-/// Records every `every`-th step: streams it to the CSV, folds it into the maxima, and keeps a
-/// thinned copy for the plots.
+/// Records the steps it is given: streams each to the CSV and keeps a thinned copy for the
+/// plots (the summary's maxima come from the run driver, `sim::vehicle_bridge::run`).
 pub struct Recorder {
     csv: Option<CsvStream>,
     line: Vec<f64>,
-    pub maxima: Maxima,
     /// Rows for the plots: every `stride`-th recorded row.
     pub plot_rows: Vec<Row>,
     stride: usize,
@@ -157,15 +144,6 @@ impl Recorder {
         Ok(Recorder {
             csv,
             line: Vec::new(),
-            maxima: Maxima {
-                midspan_deflection: 0.0,
-                midspan_acceleration: 0.0,
-                min_force: f64::INFINITY,
-                max_force: 0.0,
-                max_pressure: 0.0,
-                body_acceleration: 0.0,
-                wheel_acceleration: 0.0,
-            },
             plot_rows: Vec::new(),
             stride: 1,
             recorded: 0,
@@ -179,16 +157,6 @@ impl Recorder {
         if let Some(csv) = &mut self.csv {
             row.values(&mut self.line);
             csv.row(&self.line)?;
-        }
-        let m = &mut self.maxima;
-        m.midspan_deflection = m.midspan_deflection.max(row.midspan.0.abs());
-        m.midspan_acceleration = m.midspan_acceleration.max(row.midspan.2.abs());
-        for w in &row.wheels {
-            m.min_force = m.min_force.min(w.contact.force);
-            m.max_force = m.max_force.max(w.contact.force);
-            m.max_pressure = m.max_pressure.max(w.contact.max_pressure.abs());
-            m.body_acceleration = m.body_acceleration.max(w.body_acceleration.abs());
-            m.wheel_acceleration = m.wheel_acceleration.max(w.wheel_acceleration.abs());
         }
         self.last_t = Some(row.t);
         if self.recorded.is_multiple_of(self.stride) {
@@ -206,12 +174,12 @@ impl Recorder {
         Ok(())
     }
 
-    /// Flush the CSV to disk.
-    pub fn finish(self) -> Result<(Maxima, Vec<Row>)> {
+    /// Flush the CSV to disk; the rows kept for the plots.
+    pub fn finish(self) -> Result<Vec<Row>> {
         if let Some(csv) = self.csv {
             csv.finish()?;
         }
-        Ok((self.maxima, self.plot_rows))
+        Ok(self.plot_rows)
     }
 }
 

@@ -17,7 +17,7 @@ pub mod ode;
 pub mod stats;
 pub mod structural;
 
-pub use error::IntegrateError;
+pub use error::{CallbackError, IntegrateError};
 pub use ode::{Method, OdeOptions, OdeStepper, OdeSystem};
 pub use stats::Stats;
 pub use structural::{

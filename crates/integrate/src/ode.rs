@@ -90,21 +90,111 @@ pub use explicit::{Dopri5, ExplicitEuler, Rk4};
 pub use linalg::finite_difference_jacobian;
 pub use radau5::Radau5;
 
-use crate::error::IntegrateError;
+use crate::error::{CallbackError, IntegrateError};
 use crate::stats::Stats;
 use faer::MatMut;
+
+/// A system given by a fallible closure `f(t, y, dydt) -> Result<(), E>`: an error of the
+/// closure stops the method, which returns [`IntegrateError::Callback`] holding it unchanged.
+///
+/// ```
+/// use integrate::ode::{FallibleRhs, Method, OdeOptions};
+///
+/// #[derive(Debug, thiserror::Error, PartialEq)]
+/// #[error("contact solver failed")]
+/// struct ContactFailed;
+///
+/// let mut sys = FallibleRhs::new(1, |t: f64, _y: &[f64], dydt: &mut [f64]| {
+///     if t > 0.5 { return Err(ContactFailed); }
+///     dydt[0] = 1.0;
+///     Ok(())
+/// });
+/// let mut stepper = Method::Rk4.build(1, &OdeOptions::fixed(0.1))?;
+/// stepper.set_state(&mut sys, 0.0, &[0.0])?;
+/// let err = loop {
+///     if let Err(e) = stepper.step(&mut sys) { break e; }
+/// };
+/// assert_eq!(err.callback_error::<ContactFailed>(), Some(&ContactFailed));
+/// # Ok::<(), integrate::IntegrateError>(())
+/// ```
+pub struct FallibleRhs<F> {
+    dim: usize,
+    f: F,
+}
+
+impl<F> FallibleRhs<F> {
+    /// A system of `dim` unknowns with the right-hand side `f`.
+    pub fn new(dim: usize, f: F) -> Self {
+        Self { dim, f }
+    }
+}
+
+impl<F, E> OdeSystem for FallibleRhs<F>
+where
+    F: FnMut(f64, &[f64], &mut [f64]) -> Result<(), E>,
+    E: std::error::Error + Send + Sync + 'static,
+{
+    fn dim(&self) -> usize {
+        self.dim
+    }
+    /// The infallible form: an error of the closure becomes NaN (rejected as non-finite).
+    fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
+        if (self.f)(t, y, dydt).is_err() {
+            dydt.fill(f64::NAN);
+        }
+    }
+    fn try_rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) -> Result<(), CallbackError> {
+        (self.f)(t, y, dydt).map_err(CallbackError::new)
+    }
+}
+
+/// `f(t, y)` through [`OdeSystem::try_rhs`], a callback error carried as
+/// [`IntegrateError::Callback`].
+pub(crate) fn eval_rhs(
+    sys: &mut dyn OdeSystem,
+    t: f64,
+    y: &[f64],
+    dydt: &mut [f64],
+) -> Result<(), IntegrateError> {
+    sys.try_rhs(t, y, dydt)
+        .map_err(|error| IntegrateError::Callback { t, error })
+}
 
 /// A first-order system `y' = f(t, y)` of fixed dimension.
 ///
 /// `rhs` takes `&mut self` so that models with internal caches (the contact solver's warm
-/// start) can update them. A model that cannot evaluate `f` (e.g. a failed inner solve) should
-/// write a non-finite value: adaptive methods then reject the step and retry with a smaller
-/// one, fixed-step methods return [`IntegrateError::NonFinite`].
+/// start) can update them. A model that cannot evaluate `f` has two ways to say so:
+///
+/// * return its own error from [`try_rhs`](Self::try_rhs) (or [`try_jacobian`](Self::try_jacobian)):
+///   every method stops and returns [`IntegrateError::Callback`] carrying that error unchanged
+///   (recover it with [`IntegrateError::callback_error`]). [`FallibleRhs`] wraps a closure
+///   `FnMut(t, y, dydt) -> Result<(), E>` for this;
+/// * write a non-finite value from `rhs`: adaptive methods then reject the step and retry with
+///   a smaller one, fixed-step methods return [`IntegrateError::NonFinite`].
+///
+/// The methods call `try_rhs` and `try_jacobian` only; their defaults forward to the
+/// infallible `rhs` and `jacobian`.
 pub trait OdeSystem {
     /// Number of unknowns.
     fn dim(&self) -> usize;
     /// Evaluate `dydt = f(t, y)`.
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]);
+    /// Evaluate `dydt = f(t, y)` or fail with the caller's error (default: [`Self::rhs`],
+    /// never fails).
+    fn try_rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) -> Result<(), CallbackError> {
+        self.rhs(t, y, dydt);
+        Ok(())
+    }
+    /// As [`Self::jacobian`], or fail with the caller's error (default: [`Self::jacobian`],
+    /// never fails).
+    fn try_jacobian(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        jac: MatMut<'_, f64>,
+    ) -> Result<bool, CallbackError> {
+        Ok(self.jacobian(t, y, jac))
+    }
     /// Write the analytic Jacobian `∂f/∂y (t, y)` into `jac` (dim × dim) and return `true`, or
     /// return `false` (the default) to request finite differences
     /// ([`finite_difference_jacobian`]).

@@ -68,6 +68,7 @@ mod contact;
 pub mod irregularity;
 pub mod linalg;
 pub mod radau;
+pub mod run;
 pub mod traction;
 
 use beam::{BeamError, Derivative, ModalBasis, ModalDamping};
@@ -80,6 +81,9 @@ pub use contact::{BemLaw, ContactGeometry, ContactLaw, ContactOutput, HertzLaw, 
 pub use irregularity::{Irregularity, RandomProfile, TrackSpectrum};
 use linalg::{BlockDiagonal, CapacitanceWork, contact_update, dense_contact_update};
 pub use radau::Radau5Spec;
+pub use run::{
+    Extremum, NoObserver, Range, RunFailure, RunObserver, RunSummary, StepInfo, WheelSummary,
+};
 
 /// Standard gravity [m/s²].
 pub const GRAVITY: f64 = 9.81;
@@ -328,6 +332,8 @@ pub struct Simulation {
     stats: SolverStats,
     output_shapes: Vec<f64>,
     loss_events: usize,
+    /// Loss-of-contact events per wheel.
+    wheel_loss_events: Vec<usize>,
     in_contact: Vec<bool>,
     /// DOFs of massless wheels (placeholder mass in the stepper; see `Simulation::new`).
     massless: Vec<usize>,
@@ -726,6 +732,7 @@ impl Simulation {
             stats: SolverStats::default(),
             output_shapes,
             loss_events: 0,
+            wheel_loss_events: vec![0; nw],
             in_contact: vec![true; nw],
             massless,
             scenario,
@@ -908,16 +915,34 @@ impl Simulation {
         self.traction.as_ref()
     }
 
-    /// Steps to the end time, calling `progress(t)` after every step.
-    pub fn run(&mut self, mut progress: impl FnMut(&Self)) -> Result<(), VehicleBridgeError> {
-        let end = self.end_time();
-        let dt = self.scenario.dt;
-        let steps = (end / dt - 1e-9).ceil().max(0.0) as usize;
-        for _ in 0..steps {
-            self.step()?;
-            progress(self);
-        }
-        Ok(())
+    /// Steps to the end time, calling `progress` after every step (the run driver
+    /// [`run::run`] with an observer that never stops the run).
+    pub fn run(
+        &mut self,
+        mut progress: impl FnMut(&Self),
+    ) -> Result<RunSummary, VehicleBridgeError> {
+        let mut observer = |sim: &Self, _: StepInfo| {
+            progress(sim);
+            std::ops::ControlFlow::Continue(())
+        };
+        run::run(self, &mut observer).map_err(|f| f.error)
+    }
+
+    /// Steps of the scenario's Δt to [`end_time`](Self::end_time): `⌈T/Δt − 10⁻⁹⌉`.
+    pub fn planned_steps(&self) -> usize {
+        let steps = (self.end_time() / self.scenario.dt - 1e-9).ceil().max(0.0);
+        steps as usize
+    }
+
+    /// Position of wheel `k` at the current time, `x_k(t) = x_k0 + c t` \[m\].
+    pub fn wheel_position(&self, k: usize) -> f64 {
+        self.scenario.wheels[k].position + self.scenario.speed * self.t()
+    }
+
+    /// Loss-of-contact events per wheel (their sum is
+    /// [`loss_of_contact_events`](Self::loss_of_contact_events)).
+    pub fn wheel_loss_of_contact_events(&self) -> &[usize] {
+        &self.wheel_loss_events
     }
 
     fn advance(&mut self, dt: f64, depth: usize) -> Result<(), VehicleBridgeError> {
@@ -1429,6 +1454,7 @@ impl Simulation {
             let touching = contact.force > 0.0;
             if self.in_contact[k] && !touching {
                 self.loss_events += 1;
+                self.wheel_loss_events[k] += 1;
             }
             self.in_contact[k] = touching;
             self.forces[k] = contact.force;

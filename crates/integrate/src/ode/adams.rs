@@ -30,6 +30,7 @@ use super::{
     limit_step, rms_norm,
 };
 use crate::error::IntegrateError;
+use crate::ode::eval_rhs;
 use crate::stats::Stats;
 
 const MAX_ORDER: usize = 4;
@@ -137,7 +138,7 @@ impl AdamsPece {
 
     /// Starting step for the order-1 start from `‖y‖`, `‖f‖` and a difference estimate of `‖y''‖`
     /// (Hairer–Nørsett–Wanner I, II.4). One evaluation of `f`.
-    fn initial_step_size(&mut self, sys: &mut dyn OdeSystem) -> f64 {
+    fn initial_step_size(&mut self, sys: &mut dyn OdeSystem) -> Result<f64, IntegrateError> {
         let n = self.y.len();
         for i in 0..n {
             self.scale[i] = self.atol + self.rtol * self.y[i].abs();
@@ -152,7 +153,7 @@ impl AdamsPece {
         for i in 0..n {
             self.predicted[i] = self.y[i] + h0 * self.f_hist[0][i];
         }
-        sys.rhs(self.t + h0, &self.predicted, &mut self.f_star);
+        eval_rhs(sys, self.t + h0, &self.predicted, &mut self.f_star)?;
         self.stats.f_evals += 1;
         for i in 0..n {
             self.y_new[i] = self.f_star[i] - self.f_hist[0][i];
@@ -164,7 +165,7 @@ impl AdamsPece {
             // The variable-step start is of order 1.
             (0.01 / d1.max(d2)).sqrt()
         };
-        (100.0 * h0).min(h1).min(self.h_limit())
+        Ok((100.0 * h0).min(h1).min(self.h_limit()))
     }
 
     /// Re-sample the derivative history on the grid of spacing `ratio · spacing`: with nodes
@@ -194,7 +195,7 @@ impl AdamsPece {
     /// PECE step of order `k` (≤ the history length) and size h into `y_new`; returns the
     /// Milne error norm.
     #[allow(clippy::needless_range_loop)]
-    fn pece(&mut self, sys: &mut dyn OdeSystem, h: f64, k: usize) -> f64 {
+    fn pece(&mut self, sys: &mut dyn OdeSystem, h: f64, k: usize) -> Result<f64, IntegrateError> {
         let n = self.y.len();
         for i in 0..n {
             let mut acc = 0.0;
@@ -203,7 +204,7 @@ impl AdamsPece {
             }
             self.predicted[i] = self.y[i] + h * acc;
         }
-        sys.rhs(self.t + h, &self.predicted, &mut self.f_star);
+        eval_rhs(sys, self.t + h, &self.predicted, &mut self.f_star)?;
         self.stats.f_evals += 1;
         for i in 0..n {
             let mut acc = AM[k - 1][0] * self.f_star[i];
@@ -216,21 +217,22 @@ impl AdamsPece {
             self.predicted[i] = MILNE[k - 1] * (self.y_new[i] - self.predicted[i]);
         }
         let err = rms_norm(&self.predicted, &self.scale);
-        if err.is_finite() { err } else { f64::INFINITY }
+        Ok(if err.is_finite() { err } else { f64::INFINITY })
     }
 
     /// Accept `y_new` at `t + h`: rotate states and history, evaluate `f` at the new point.
-    fn accept(&mut self, sys: &mut dyn OdeSystem, h: f64) {
+    fn accept(&mut self, sys: &mut dyn OdeSystem, h: f64) -> Result<(), IntegrateError> {
         self.f_prev.copy_from_slice(&self.f_hist[0]);
         std::mem::swap(&mut self.y_prev, &mut self.y);
         std::mem::swap(&mut self.y, &mut self.y_new);
         self.t_prev = self.t;
         self.t += h;
         self.f_hist.rotate_right(1);
-        sys.rhs(self.t, &self.y, &mut self.f_hist[0]);
+        eval_rhs(sys, self.t, &self.y, &mut self.f_hist[0])?;
         self.stats.f_evals += 1;
         self.history_len = (self.history_len + 1).min(self.order);
         self.stats.steps += 1;
+        Ok(())
     }
 }
 
@@ -250,13 +252,13 @@ impl OdeStepper for AdamsPece {
         self.t_prev = t;
         self.y.copy_from_slice(y);
         self.y_prev.copy_from_slice(y);
-        sys.rhs(t, y, &mut self.f_hist[0]);
+        eval_rhs(sys, t, y, &mut self.f_hist[0])?;
         self.stats.f_evals += 1;
         self.f_prev.copy_from_slice(&self.f_hist[0]);
         self.history_len = 1;
         self.h_next = match (self.fixed_step, self.initial_step) {
             (Some(h), _) | (None, Some(h)) => h,
-            (None, None) => self.initial_step_size(sys),
+            (None, None) => self.initial_step_size(sys)?,
         };
         self.spacing = self.h_next;
         Ok(())
@@ -287,23 +289,23 @@ impl OdeStepper for AdamsPece {
                     &self.f_hist[0],
                     [w0, w1, w2, w3],
                     &mut self.y_new,
-                );
+                )?;
                 self.stats.f_evals += 3;
                 if self.y_new.iter().any(|v| !v.is_finite()) {
                     return Err(IntegrateError::NonFinite { t: self.t + h });
                 }
-                self.accept(sys, h);
+                self.accept(sys, h)?;
                 return Ok(());
             }
             // Variable step starts with order 1 and raises the order by one per step as the
             // history fills (every step error-controlled).
             let k = self.history_len.min(self.order);
-            let err = self.pece(sys, h, k);
+            let err = self.pece(sys, h, k)?;
             if let Some(hf) = self.fixed_step {
                 if self.y_new.iter().any(|v| !v.is_finite()) {
                     return Err(IntegrateError::NonFinite { t: self.t + h });
                 }
-                self.accept(sys, h);
+                self.accept(sys, h)?;
                 self.h_next = hf;
                 return Ok(());
             }
@@ -313,7 +315,7 @@ impl OdeStepper for AdamsPece {
                 self.h_next = h * factor;
                 continue;
             }
-            self.accept(sys, h);
+            self.accept(sys, h)?;
             self.h_next = (h * factor).min(self.h_limit());
             return Ok(());
         }

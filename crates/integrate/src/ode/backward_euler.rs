@@ -7,6 +7,7 @@ use super::linalg::evaluate_jacobian;
 use super::{OdeOptions, OdeStepper, OdeSystem, rms_norm};
 use crate::error::IntegrateError;
 use crate::lu::DenseLu;
+use crate::ode::eval_rhs;
 use crate::stats::Stats;
 use faer::Mat;
 
@@ -62,7 +63,7 @@ impl BackwardEuler {
             w0,
             w1,
             &mut self.jac,
-        );
+        )?;
         self.state.stats.jacobian_evals += 1;
         {
             let mut m = self.lu.matrix_mut();
@@ -105,7 +106,7 @@ impl OdeStepper for BackwardEuler {
         let mut converged = false;
         let mut norm = f64::INFINITY;
         for _ in 0..MAX_NEWTON {
-            sys.rhs(t_new, &s.y, &mut s.f);
+            eval_rhs(sys, t_new, &s.y, &mut s.f)?;
             s.stats.f_evals += 1;
             s.stats.newton_iterations += 1;
             // Newton: (I − hJ) Δ = −(y − y_n − h f(t_{n+1}, y)).

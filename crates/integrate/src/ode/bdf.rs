@@ -24,6 +24,7 @@ use super::{
 };
 use crate::error::IntegrateError;
 use crate::lu::DenseLu;
+use crate::ode::eval_rhs;
 use crate::stats::Stats;
 use faer::Mat;
 
@@ -178,7 +179,7 @@ impl Bdf {
     }
 
     /// scipy's `select_initial_step` for order 1: `h = min(100 h₀, (0.01/max(‖f‖, ‖f'‖))^{1/2})`.
-    fn initial_step_size(&mut self, sys: &mut dyn OdeSystem) -> f64 {
+    fn initial_step_size(&mut self, sys: &mut dyn OdeSystem) -> Result<f64, IntegrateError> {
         let n = self.f.len();
         for i in 0..n {
             self.scale[i] = self.atol + self.rtol * self.d[0][i].abs();
@@ -194,7 +195,7 @@ impl Bdf {
             self.work[0][i] = self.d[0][i] + h0 * self.f[i];
         }
         let (a, b) = self.work.split_at_mut(1);
-        sys.rhs(self.t + h0, &a[0], &mut b[0]);
+        eval_rhs(sys, self.t + h0, &a[0], &mut b[0])?;
         self.stats.f_evals += 1;
         for i in 0..n {
             self.work[2][i] = self.work[1][i] - self.f[i];
@@ -205,11 +206,11 @@ impl Bdf {
         } else {
             (0.01 / d1.max(d2)).sqrt()
         };
-        (100.0 * h0).min(h1).min(self.h_limit())
+        Ok((100.0 * h0).min(h1).min(self.h_limit()))
     }
 
-    fn compute_jacobian(&mut self, sys: &mut dyn OdeSystem, t: f64) {
-        sys.rhs(t, &self.y_predict, &mut self.f);
+    fn compute_jacobian(&mut self, sys: &mut dyn OdeSystem, t: f64) -> Result<(), IntegrateError> {
+        eval_rhs(sys, t, &self.y_predict, &mut self.f)?;
         self.stats.f_evals += 1;
         let (a, b) = self.work.split_at_mut(1);
         evaluate_jacobian(
@@ -220,8 +221,9 @@ impl Bdf {
             &mut a[0],
             &mut b[0],
             &mut self.jac,
-        );
+        )?;
         self.stats.jacobian_evals += 1;
+        Ok(())
     }
 
     fn factor_iteration_matrix(&mut self, c: f64) -> bool {
@@ -243,7 +245,12 @@ impl Bdf {
     /// Simplified Newton on `y − c f(t, y) − ψ_… = 0` from the predictor (scipy's
     /// `solve_bdf_system`): stop when `rate/(1 − rate)·‖Δ‖ < tol`, give up when the rate is
     /// ≥ 1 or the predicted final increment is too large. Returns (converged, iterations).
-    fn solve_corrector(&mut self, sys: &mut dyn OdeSystem, t_new: f64, c: f64) -> (bool, usize) {
+    fn solve_corrector(
+        &mut self,
+        sys: &mut dyn OdeSystem,
+        t_new: f64,
+        c: f64,
+    ) -> Result<(bool, usize), IntegrateError> {
         let n = self.f.len();
         self.corr.fill(0.0);
         self.y_new.copy_from_slice(&self.y_predict);
@@ -251,11 +258,11 @@ impl Bdf {
         let mut iterations = 0;
         for k in 0..NEWTON_MAXITER {
             iterations = k + 1;
-            sys.rhs(t_new, &self.y_new, &mut self.f);
+            eval_rhs(sys, t_new, &self.y_new, &mut self.f)?;
             self.stats.f_evals += 1;
             self.stats.newton_iterations += 1;
             if self.f.iter().any(|v| !v.is_finite()) {
-                return (false, iterations);
+                return Ok((false, iterations));
             }
             for i in 0..n {
                 self.dy[i] = c * self.f[i] - self.psi[i] - self.corr[i];
@@ -267,21 +274,21 @@ impl Bdf {
                 && (r >= 1.0
                     || r.powi((NEWTON_MAXITER - k) as i32) / (1.0 - r) * dy_norm > self.newton_tol)
             {
-                return (false, iterations);
+                return Ok((false, iterations));
             }
             for i in 0..n {
                 self.y_new[i] += self.dy[i];
                 self.corr[i] += self.dy[i];
             }
             if dy_norm == 0.0 || rate.is_some_and(|r| r / (1.0 - r) * dy_norm < self.newton_tol) {
-                return (true, iterations);
+                return Ok((true, iterations));
             }
             if !dy_norm.is_finite() {
-                return (false, iterations);
+                return Ok((false, iterations));
             }
             dy_norm_old = Some(dy_norm);
         }
-        (false, iterations)
+        Ok((false, iterations))
     }
 
     /// Predictor, ψ and scale for the current order and step.
@@ -363,7 +370,7 @@ impl Bdf {
     /// One classic RK4 starting step of size h (4 sub-steps of h/4) in fixed-step mode; rebuilds
     /// the differences from the stored points so that the dense output is their interpolant.
     /// `d_tmp[j]` holds the point `y(t − j h)`.
-    fn starter_step(&mut self, sys: &mut dyn OdeSystem) {
+    fn starter_step(&mut self, sys: &mut dyn OdeSystem) -> Result<(), IntegrateError> {
         let h = self.h_abs;
         let n = self.f.len();
         let sub = h / 4.0;
@@ -375,11 +382,11 @@ impl Bdf {
         let mut ts = self.t;
         self.y_new.copy_from_slice(&self.d_tmp[1]);
         for _ in 0..4 {
-            sys.rhs(ts, &self.y_new, &mut self.f);
+            eval_rhs(sys, ts, &self.y_new, &mut self.f)?;
             let [w0, w1, w2, w3, w4] = &mut self.work[..] else {
                 unreachable!("five work vectors")
             };
-            rk4_step(sys, ts, sub, &self.y_new, &self.f, [w0, w1, w2, w3], w4);
+            rk4_step(sys, ts, sub, &self.y_new, &self.f, [w0, w1, w2, w3], w4)?;
             self.y_new.copy_from_slice(w4);
             ts += sub;
         }
@@ -405,6 +412,7 @@ impl Bdf {
             row.fill(0.0);
         }
         self.stats.steps += 1;
+        Ok(())
     }
 }
 
@@ -426,7 +434,7 @@ impl OdeStepper for Bdf {
             row.fill(0.0);
         }
         self.d[0].copy_from_slice(y);
-        sys.rhs(t, y, &mut self.f);
+        eval_rhs(sys, t, y, &mut self.f)?;
         self.stats.f_evals += 1;
         self.order = 1;
         self.n_equal_steps = 0;
@@ -439,7 +447,7 @@ impl OdeStepper for Bdf {
         } else {
             self.h_abs = match self.initial_step {
                 Some(h) => h.min(self.h_limit()),
-                None => self.initial_step_size(sys),
+                None => self.initial_step_size(sys)?,
             };
             for i in 0..y.len() {
                 self.d[1][i] = self.h_abs * self.f[i];
@@ -447,7 +455,7 @@ impl OdeStepper for Bdf {
         }
         // Jacobian at the initial point (scipy evaluates it once at the start).
         self.y_predict.copy_from_slice(y);
-        self.compute_jacobian(sys, t);
+        self.compute_jacobian(sys, t)?;
         Ok(())
     }
 
@@ -459,7 +467,7 @@ impl OdeStepper for Bdf {
             });
         }
         if self.starter_steps_left > 0 {
-            self.starter_step(sys);
+            self.starter_step(sys)?;
             if self.starter_steps_left == 0 {
                 self.order = self.max_order;
                 // d[order + 1] is unknown after the start; it only feeds the order selection,
@@ -490,15 +498,15 @@ impl OdeStepper for Bdf {
                     if current_jac {
                         break (false, 0);
                     }
-                    self.compute_jacobian(sys, t_new);
+                    self.compute_jacobian(sys, t_new)?;
                     current_jac = true;
                     continue;
                 }
-                let (ok, it) = self.solve_corrector(sys, t_new, c);
+                let (ok, it) = self.solve_corrector(sys, t_new, c)?;
                 if ok || current_jac {
                     break (ok, it);
                 }
-                self.compute_jacobian(sys, t_new);
+                self.compute_jacobian(sys, t_new)?;
                 self.lu_valid = false;
                 current_jac = true;
             };

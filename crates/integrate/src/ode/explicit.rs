@@ -6,6 +6,7 @@ use super::{
     OdeOptions, OdeStepper, OdeSystem, check_interpolation_range, check_state, limit_step,
 };
 use crate::error::IntegrateError;
+use crate::ode::eval_rhs;
 use crate::stats::Stats;
 
 /// Explicit Euler, `y_{n+1} = y_n + h f(t_n, y_n)` (order 1). One evaluation of `f` per step
@@ -79,23 +80,24 @@ pub(crate) fn rk4_step(
     k1: &[f64],
     [k2, k3, k4, stage]: [&mut [f64]; 4],
     y_new: &mut [f64],
-) {
+) -> Result<(), IntegrateError> {
     let n = y.len();
     for i in 0..n {
         stage[i] = y[i] + 0.5 * h * k1[i];
     }
-    sys.rhs(t + 0.5 * h, stage, k2);
+    eval_rhs(sys, t + 0.5 * h, stage, k2)?;
     for i in 0..n {
         stage[i] = y[i] + 0.5 * h * k2[i];
     }
-    sys.rhs(t + 0.5 * h, stage, k3);
+    eval_rhs(sys, t + 0.5 * h, stage, k3)?;
     for i in 0..n {
         stage[i] = y[i] + h * k3[i];
     }
-    sys.rhs(t + h, stage, k4);
+    eval_rhs(sys, t + h, stage, k4)?;
     for i in 0..n {
         y_new[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
     }
+    Ok(())
 }
 
 impl OdeStepper for Rk4 {
@@ -116,7 +118,7 @@ impl OdeStepper for Rk4 {
             &s.f_prev,
             [&mut self.k2, &mut self.k3, &mut self.k4, &mut self.stage],
             &mut s.y,
-        );
+        )?;
         s.stats.f_evals += 3;
         s.end_step(sys, h)
     }
@@ -232,7 +234,7 @@ impl Dopri5 {
     /// Hairer's starting step (Hairer–Nørsett–Wanner I, II.4, algorithm "HINIT"): from
     /// `‖y‖`, `‖f‖` and a difference estimate of `‖y''‖`, for a method of order 5.
     /// Uses one evaluation of `f`; `k[1]`, `k[2]` serve as scratch.
-    fn initial_step_size(&mut self, sys: &mut dyn OdeSystem) -> f64 {
+    fn initial_step_size(&mut self, sys: &mut dyn OdeSystem) -> Result<f64, IntegrateError> {
         let n = self.y.len();
         let (mut dnf, mut dny) = (0.0, 0.0);
         for i in 0..n {
@@ -250,7 +252,7 @@ impl Dopri5 {
             self.k[1][i] = self.y[i] + h * self.k[0][i];
         }
         let (head, tail) = self.k.split_at_mut(2);
-        sys.rhs(self.t + h, &head[1], &mut tail[0]);
+        eval_rhs(sys, self.t + h, &head[1], &mut tail[0])?;
         self.stats.f_evals += 1;
         let mut der2 = 0.0;
         for i in 0..n {
@@ -264,12 +266,12 @@ impl Dopri5 {
         } else {
             (0.01 / der12).powf(1.0 / 5.0)
         };
-        (100.0 * h).min(h1).min(self.h_limit())
+        Ok((100.0 * h).min(h1).min(self.h_limit()))
     }
 
     /// The six new stages of a step of size `h` from `(t, y)`; `k[0] = f(t, y)` is given,
     /// `k[6] = f(t + h, y_new)` (first-same-as-last).
-    fn stages(&mut self, sys: &mut dyn OdeSystem, h: f64) {
+    fn stages(&mut self, sys: &mut dyn OdeSystem, h: f64) -> Result<(), IntegrateError> {
         let n = self.y.len();
         let t = self.t;
         let rows: [(f64, [f64; 6]); 6] = [
@@ -293,9 +295,10 @@ impl Dopri5 {
             }
             let (done, rest) = self.k.split_at_mut(s + 1);
             let _ = done;
-            sys.rhs(t + c * h, &self.stage, &mut rest[0]);
+            eval_rhs(sys, t + c * h, &self.stage, &mut rest[0])?;
         }
         self.stats.f_evals += 6;
+        Ok(())
     }
 
     /// Weighted RMS norm of the embedded error estimate `h Σ e_j k_j`.
@@ -360,7 +363,7 @@ impl OdeStepper for Dopri5 {
         self.t = t;
         self.t_prev = t;
         self.y.copy_from_slice(y);
-        sys.rhs(t, y, &mut self.k[0]);
+        eval_rhs(sys, t, y, &mut self.k[0])?;
         self.stats.f_evals += 1;
         self.err_old = 1e-4;
         for d in &mut self.dense {
@@ -369,7 +372,7 @@ impl OdeStepper for Dopri5 {
         self.dense[0].copy_from_slice(y);
         self.h_next = match (self.fixed_step, self.initial_step) {
             (Some(h), _) | (None, Some(h)) => h,
-            (None, None) => self.initial_step_size(sys),
+            (None, None) => self.initial_step_size(sys)?,
         };
         Ok(())
     }
@@ -387,7 +390,7 @@ impl OdeStepper for Dopri5 {
             if h <= 10.0 * f64::EPSILON * self.t.abs().max(1.0) {
                 return Err(IntegrateError::StepSizeTooSmall { t: self.t, h });
             }
-            self.stages(sys, h);
+            self.stages(sys, h)?;
             if let Some(hf) = self.fixed_step {
                 if self.y_new.iter().any(|v| !v.is_finite()) {
                     return Err(IntegrateError::NonFinite { t: self.t + h });

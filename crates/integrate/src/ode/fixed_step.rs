@@ -4,6 +4,7 @@ use super::{
     OdeOptions, OdeSystem, check_interpolation_range, check_state, hermite_interpolate, limit_step,
 };
 use crate::error::IntegrateError;
+use crate::ode::eval_rhs;
 use crate::stats::Stats;
 
 /// State shared by the fixed-step methods (explicit Euler, RK4, backward Euler): current and previous point with their
@@ -58,7 +59,7 @@ impl FixedStepState {
         self.t_prev = t;
         self.y.copy_from_slice(y);
         self.y_prev.copy_from_slice(y);
-        sys.rhs(t, y, &mut self.f);
+        eval_rhs(sys, t, y, &mut self.f)?;
         self.stats.f_evals += 1;
         self.f_prev.copy_from_slice(&self.f);
         Ok(())
@@ -98,7 +99,7 @@ impl FixedStepState {
         if self.y.iter().any(|v| !v.is_finite()) {
             return Err(IntegrateError::NonFinite { t: self.t });
         }
-        sys.rhs(self.t, &self.y, &mut self.f);
+        eval_rhs(sys, self.t, &self.y, &mut self.f)?;
         self.stats.f_evals += 1;
         self.stats.steps += 1;
         Ok(())

@@ -1,7 +1,8 @@
 //! Finite-difference Jacobians of the implicit methods (their LU factorisation is
 //! [`crate::lu::DenseLu`]).
 
-use super::OdeSystem;
+use super::{OdeSystem, eval_rhs};
+use crate::IntegrateError;
 use faer::{Mat, MatMut};
 
 /// Forward-difference Jacobian `J[:, j] ≈ (f(t, y + δ_j e_j) − f(t, y)) / δ_j` with the
@@ -30,8 +31,33 @@ pub fn finite_difference_jacobian(
     }
 }
 
+/// As [`finite_difference_jacobian`], evaluating `f` through [`OdeSystem::try_rhs`] so that a
+/// callback error stops the evaluation.
+fn try_finite_difference_jacobian(
+    sys: &mut dyn OdeSystem,
+    t: f64,
+    y: &[f64],
+    f0: &[f64],
+    y_work: &mut [f64],
+    f_work: &mut [f64],
+    mut jac: MatMut<'_, f64>,
+) -> Result<(), IntegrateError> {
+    y_work.copy_from_slice(y);
+    for j in 0..y.len() {
+        let delta = f64::EPSILON.sqrt() * y[j].abs().max(1e-5);
+        y_work[j] = y[j] + delta;
+        eval_rhs(sys, t, y_work, f_work)?;
+        for i in 0..y.len() {
+            jac[(i, j)] = (f_work[i] - f0[i]) / delta;
+        }
+        y_work[j] = y[j];
+    }
+    Ok(())
+}
+
 /// Evaluate the Jacobian (analytic if the system provides one, finite differences otherwise).
-/// Returns the number of right-hand-side evaluations spent (0 for an analytic Jacobian).
+/// Returns the number of right-hand-side evaluations spent (0 for an analytic Jacobian); a
+/// callback error of the system is returned as [`IntegrateError::Callback`].
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn evaluate_jacobian(
     sys: &mut dyn OdeSystem,
@@ -41,11 +67,14 @@ pub(crate) fn evaluate_jacobian(
     y_work: &mut [f64],
     f_work: &mut [f64],
     jac: &mut Mat<f64>,
-) -> usize {
-    if sys.jacobian(t, y, jac.as_mut()) {
-        0
+) -> Result<usize, IntegrateError> {
+    let analytic = sys
+        .try_jacobian(t, y, jac.as_mut())
+        .map_err(|error| IntegrateError::Callback { t, error })?;
+    if analytic {
+        Ok(0)
     } else {
-        finite_difference_jacobian(sys, t, y, f0, y_work, f_work, jac.as_mut());
-        y.len()
+        try_finite_difference_jacobian(sys, t, y, f0, y_work, f_work, jac.as_mut())?;
+        Ok(y.len())
     }
 }

@@ -28,6 +28,7 @@ use super::{
 };
 use crate::error::IntegrateError;
 use crate::lu::DenseLu;
+use crate::ode::eval_rhs;
 use crate::stats::Stats;
 use faer::{Mat, c64};
 
@@ -228,13 +229,14 @@ impl Radau5 {
         }
     }
 
-    fn compute_jacobian(&mut self, sys: &mut dyn OdeSystem) {
+    fn compute_jacobian(&mut self, sys: &mut dyn OdeSystem) -> Result<(), IntegrateError> {
         let n = self.y.len();
         let (yw, fw) = (&mut self.work, &mut self.fz);
-        let _fd_evals = evaluate_jacobian(sys, self.t, &self.y, &self.f0, yw, fw, &mut self.jac);
+        let _fd_evals = evaluate_jacobian(sys, self.t, &self.y, &self.f0, yw, fw, &mut self.jac)?;
         debug_assert!(_fd_evals == 0 || _fd_evals == n);
         self.stats.jacobian_evals += 1;
         self.jacobian_current = true;
+        Ok(())
     }
 
     /// Factorise `E₁ = γ̂/h − J` and `E₂ = (α̂ + iβ̂)/h − J`. `false` if either is singular.
@@ -294,15 +296,16 @@ impl Radau5 {
     }
 
     /// Evaluate `F(Z)` at the three stages, overwriting `z[k]` with `f(t + c_k h, y + Z_k)`.
-    fn evaluate_stages(&mut self, sys: &mut dyn OdeSystem) {
+    fn evaluate_stages(&mut self, sys: &mut dyn OdeSystem) -> Result<(), IntegrateError> {
         for (k, c) in [C1, C2, 1.0].into_iter().enumerate() {
             for i in 0..self.y.len() {
                 self.work[i] = self.y[i] + self.z[k][i];
             }
-            sys.rhs(self.t + c * self.h, &self.work, &mut self.fz);
+            eval_rhs(sys, self.t + c * self.h, &self.work, &mut self.fz)?;
             self.z[k].copy_from_slice(&self.fz);
         }
         self.stats.f_evals += 3;
+        Ok(())
     }
 
     /// One simplified-Newton increment: transform `F(Z)` with `T⁻¹`, form the right-hand sides
@@ -336,7 +339,7 @@ impl Radau5 {
 
     /// The simplified Newton iteration of RADAU5 (contraction estimate θ, predicted
     /// convergence test `η‖ΔW‖ θ^{NIT−1−k} / κ < 1`).
-    fn newton(&mut self, sys: &mut dyn OdeSystem) -> NewtonOutcome {
+    fn newton(&mut self, sys: &mut dyn OdeSystem) -> Result<NewtonOutcome, IntegrateError> {
         let n = self.y.len();
         self.faccon = self.faccon.max(UROUND).powf(0.8);
         self.theta = THET;
@@ -344,14 +347,14 @@ impl Radau5 {
         let (mut dynold, mut thqold) = (0.0f64, 0.0f64);
         loop {
             if newt >= NIT {
-                return NewtonOutcome::Failed;
+                return Ok(NewtonOutcome::Failed);
             }
-            self.evaluate_stages(sys);
+            self.evaluate_stages(sys)?;
             let dyno = self.newton_increment();
             self.stats.newton_iterations += 1;
             newt += 1;
             if !dyno.is_finite() {
-                return NewtonOutcome::Failed;
+                return Ok(NewtonOutcome::Failed);
             }
             if newt > 1 && newt < NIT {
                 let thq = dyno / dynold;
@@ -368,10 +371,10 @@ impl Radau5 {
                     if dyth >= 1.0 {
                         let qnewt = dyth.clamp(1e-4, 20.0);
                         let factor = 0.8 * qnewt.powf(-1.0 / (4.0 + remaining as f64));
-                        return NewtonOutcome::TooSlow { factor };
+                        return Ok(NewtonOutcome::TooSlow { factor });
                     }
                 } else {
-                    return NewtonOutcome::Failed;
+                    return Ok(NewtonOutcome::Failed);
                 }
             }
             dynold = dyno.max(UROUND);
@@ -385,14 +388,14 @@ impl Radau5 {
                 self.z[2][i] = T31 * w1 + w2;
             }
             if self.faccon * dyno <= self.fnewt {
-                return NewtonOutcome::Converged { iterations: newt };
+                return Ok(NewtonOutcome::Converged { iterations: newt });
             }
         }
     }
 
     /// Filtered error estimate `‖E₁⁻¹ (f₀ + (dd₁Z₁ + dd₂Z₂ + dd₃Z₃)/h)‖`, with RADAU5's second
     /// filter `E₁⁻¹(f(t, y + err) + …)` when the first estimate fails on a first or rejected step.
-    fn error_estimate(&mut self, sys: &mut dyn OdeSystem) -> f64 {
+    fn error_estimate(&mut self, sys: &mut dyn OdeSystem) -> Result<f64, IntegrateError> {
         let n = self.y.len();
         let (hee1, hee2, hee3) = (DD1 / self.h, DD2 / self.h, DD3 / self.h);
         for i in 0..n {
@@ -405,7 +408,7 @@ impl Radau5 {
             for i in 0..n {
                 self.work[i] += self.y[i];
             }
-            sys.rhs(self.t, &self.work, &mut self.fz);
+            eval_rhs(sys, self.t, &self.work, &mut self.fz)?;
             self.stats.f_evals += 1;
             for i in 0..n {
                 self.work[i] = self.fz[i] + self.err_base[i];
@@ -413,7 +416,7 @@ impl Radau5 {
             self.lu_real.solve_in_place(&mut self.work);
             err = super::rms_norm(&self.work, &self.scal).max(1e-10);
         }
-        if err.is_finite() { err } else { f64::INFINITY }
+        Ok(if err.is_finite() { err } else { f64::INFINITY })
     }
 
     /// Advance the state with the converged stages and store the collocation polynomial.
@@ -473,7 +476,12 @@ impl Radau5 {
     }
 
     /// Bookkeeping after an accepted step (RADAU5's code after label "STEP IS ACCEPTED").
-    fn after_acceptance(&mut self, sys: &mut dyn OdeSystem, err: f64, newt: usize) {
+    fn after_acceptance(
+        &mut self,
+        sys: &mut dyn OdeSystem,
+        err: f64,
+        newt: usize,
+    ) -> Result<(), IntegrateError> {
         let (mut h_new, mut quot) = self.proposed_step(err, newt);
         if self.accepted_since_start > 0 {
             let facgus = ((self.h_acc / self.h) * (err * err / self.err_acc).powf(0.25) / SAFE)
@@ -489,7 +497,7 @@ impl Radau5 {
         if reached_stop {
             self.f0_valid = false;
         } else {
-            sys.rhs(self.t, &self.y, &mut self.f0);
+            eval_rhs(sys, self.t, &self.y, &mut self.f0)?;
             self.stats.f_evals += 1;
             self.f0_valid = true;
         }
@@ -501,7 +509,7 @@ impl Radau5 {
                 Pending::Jacobian
             };
             self.reject = false;
-            return;
+            return Ok(());
         }
         h_new = h_new.min(self.h_limit());
         if rejected_before {
@@ -517,7 +525,7 @@ impl Radau5 {
             let qt = h_new / self.h;
             if self.theta <= THET && (QUOT1..=QUOT2).contains(&qt) {
                 self.pending = Pending::Ready;
-                return;
+                return Ok(());
             }
             self.h = h_new;
         }
@@ -526,6 +534,7 @@ impl Radau5 {
         } else {
             Pending::Jacobian
         };
+        Ok(())
     }
 }
 
@@ -549,7 +558,7 @@ impl OdeStepper for Radau5 {
         }
         self.cont[0].copy_from_slice(y);
         self.update_scale();
-        sys.rhs(t, y, &mut self.f0);
+        eval_rhs(sys, t, y, &mut self.f0)?;
         self.stats.f_evals += 1;
         self.f0_valid = true;
         self.h = self.fixed_step.or(self.initial_step).unwrap_or(1e-6);
@@ -573,7 +582,7 @@ impl OdeStepper for Radau5 {
             });
         }
         if !self.f0_valid {
-            sys.rhs(self.t, &self.y, &mut self.f0);
+            eval_rhs(sys, self.t, &self.y, &mut self.f0)?;
             self.stats.f_evals += 1;
             self.f0_valid = true;
         }
@@ -586,7 +595,7 @@ impl OdeStepper for Radau5 {
                 }
             }
             if self.pending == Pending::Jacobian {
-                self.compute_jacobian(sys);
+                self.compute_jacobian(sys)?;
                 self.pending = Pending::Decomposition;
             }
             if self.pending == Pending::Decomposition {
@@ -603,7 +612,7 @@ impl OdeStepper for Radau5 {
                 });
             }
             self.starting_values();
-            let newt = match self.newton(sys) {
+            let newt = match self.newton(sys)? {
                 NewtonOutcome::Converged { iterations } => iterations,
                 NewtonOutcome::TooSlow { factor } => {
                     if self.fixed_step.is_some() {
@@ -627,12 +636,12 @@ impl OdeStepper for Radau5 {
                 }
             };
             if self.fixed_step.is_some() {
-                self.after_acceptance(sys, 1.0, newt);
+                self.after_acceptance(sys, 1.0, newt)?;
                 return Ok(());
             }
-            let err = self.error_estimate(sys);
+            let err = self.error_estimate(sys)?;
             if err < 1.0 {
-                self.after_acceptance(sys, err, newt);
+                self.after_acceptance(sys, err, newt)?;
                 return Ok(());
             }
             // Error-test failure.

@@ -17,7 +17,9 @@ pub struct LinearStructure<L> {
 
 impl<L: FnMut(f64, &mut [f64])> LinearStructure<L> {
     /// Builds the system after checking that `M`, `C` and `K` are square, of one size, finite,
-    /// and that the diagonal of `M` is positive (a negative or zero mass is rejected).
+    /// and that the diagonal of `M` is positive (a negative or zero mass is rejected), except
+    /// for massless DOFs whose row and column of `M` are entirely zero (see
+    /// [`StructuralStepper::new`](super::StructuralStepper::new)).
     pub fn new(
         mass: Mat<f64>,
         damping: Option<Mat<f64>>,
@@ -26,10 +28,14 @@ impl<L: FnMut(f64, &mut [f64])> LinearStructure<L> {
     ) -> Result<Self, IntegrateError> {
         let n = mass.nrows();
         check_matrix("mass", mass.as_ref(), n)?;
-        if let Some(i) = (0..n).find(|&i| mass[(i, i)] <= 0.0) {
+        let massless = |i: usize| (0..n).all(|j| mass[(i, j)] == 0.0 && mass[(j, i)] == 0.0);
+        if let Some(i) = (0..n).find(|&i| mass[(i, i)] <= 0.0 && !massless(i)) {
             return Err(IntegrateError::InvalidParameter {
                 name: "mass",
-                reason: format!("diagonal entry {i} is {} (must be > 0)", mass[(i, i)]),
+                reason: format!(
+                    "diagonal entry {i} is {} (must be > 0, or row and column {i} entirely 0 for a massless DOF)",
+                    mass[(i, i)]
+                ),
             });
         }
         if let Some(c) = &damping {

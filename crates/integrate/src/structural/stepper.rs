@@ -129,7 +129,11 @@ pub struct StructuralStepper {
     method: StructuralMethod,
     newton: NewtonOptions,
     mass: Mat<f64>,
+    /// LU of `M` with a unit diagonal in the massless rows (so it factorises; those rows of
+    /// the solve are discarded).
     mass_lu: DenseLu<f64>,
+    /// The massless DOFs: row and column of `M` entirely zero.
+    massless: Vec<usize>,
     damping: Option<Mat<f64>>,
     t: f64,
     q: Vec<f64>,
@@ -164,6 +168,17 @@ impl std::fmt::Debug for StructuralStepper {
 impl StructuralStepper {
     /// Creates a stepper at `(t0, q0, v0)` with the consistent initial acceleration
     /// `a₀ = M⁻¹(f_ext(t₀) − C v₀ − f_int(q₀))` (references.md §D3.5, start-up).
+    ///
+    /// # Massless DOFs
+    /// A DOF whose row and column of `M` are entirely zero is *massless* (e.g. a massless
+    /// wheel or the end node of a spring–damper): its balance row `C v + f_int = f_ext` has no
+    /// inertia and is closed by the damping, stiffness or a constraint of the caller. Only the
+    /// implicit methods accept massless DOFs (an explicit method needs `M⁻¹`); their step
+    /// equation then has zero inertia in those rows (the history force holds only the
+    /// α_f-weighted elastic and damping forces). `M⁻¹` above is taken over the massive DOFs;
+    /// the start acceleration of a massless DOF is set to 0 — give the true one with
+    /// [`restart_with_acceleration`](Self::restart_with_acceleration) where the method uses it
+    /// (HHT, generalized-α; the trapezoidal rule's displacement update does not depend on it).
     pub fn new<P: StructuralSystem + ?Sized>(
         method: StructuralMethod,
         problem: &mut P,
@@ -204,6 +219,43 @@ impl StructuralStepper {
         self.consistent_acceleration(problem)
     }
 
+    /// Restarts at `(t, q, v)` with the given acceleration `a` instead of the consistent one
+    /// (for a system with massless DOFs whose acceleration the caller knows, e.g. from a
+    /// constraint, or to continue from another integrator's state). Statistics, options and
+    /// factorisations are kept; the dense output is cleared. Invalid arguments leave the
+    /// stepper unchanged.
+    pub fn restart_with_acceleration<P: StructuralSystem + ?Sized>(
+        &mut self,
+        problem: &mut P,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+        a: &[f64],
+    ) -> Result<(), IntegrateError> {
+        self.check_problem(problem)?;
+        check_time("t", t)?;
+        check_vector("q", q, self.q.len())?;
+        check_vector("v", v, self.q.len())?;
+        check_vector("a", a, self.q.len())?;
+        let f_int = &mut self.work.f_int;
+        problem.internal_force(q, f_int);
+        self.stats.f_evals += 1;
+        finite_or_error(f_int, t)?;
+        self.f_int.copy_from_slice(f_int);
+        self.t = t;
+        self.q.copy_from_slice(q);
+        self.v.copy_from_slice(v);
+        self.a.copy_from_slice(a);
+        self.last_step = None;
+        self.dt_prev = None;
+        Ok(())
+    }
+
+    /// The massless DOFs (row and column of `M` entirely zero), in increasing order.
+    pub fn massless_dofs(&self) -> &[usize] {
+        &self.massless
+    }
+
     /// `a = M⁻¹(f_ext(t) − C v − f_int(q))` at the current state (references.md §D3.5, start-up),
     /// with `f_int(q)` already in `self.f_int`.
     fn consistent_acceleration<P: StructuralSystem + ?Sized>(
@@ -219,6 +271,9 @@ impl StructuralStepper {
             mat_vec_add(c.as_ref(), -1.0, &self.v, &mut w.residual);
         }
         self.mass_lu.solve_in_place(&mut w.residual);
+        for &i in &self.massless {
+            w.residual[i] = 0.0;
+        }
         finite_or_error(&w.residual, self.t)?;
         self.a.copy_from_slice(&w.residual);
         Ok(())
@@ -262,10 +317,25 @@ impl StructuralStepper {
         check_vector("v0", v0, n)?;
         let mass = problem.mass_matrix().to_owned();
         check_matrix("mass", mass.as_ref(), n)?;
-        if let Some(i) = (0..n).find(|&i| mass[(i, i)] <= 0.0) {
+        let massless: Vec<usize> = (0..n)
+            .filter(|&i| (0..n).all(|j| mass[(i, j)] == 0.0 && mass[(j, i)] == 0.0))
+            .collect();
+        if let Some(i) = (0..n).find(|&i| mass[(i, i)] <= 0.0 && !massless.contains(&i)) {
             return Err(IntegrateError::InvalidParameter {
                 name: "mass",
-                reason: format!("diagonal entry {i} is {} (must be > 0)", mass[(i, i)]),
+                reason: format!(
+                    "diagonal entry {i} is {} (must be > 0, or row and column {i} entirely 0 for a massless DOF)",
+                    mass[(i, i)]
+                ),
+            });
+        }
+        if let (Some(&i), true) = (massless.first(), method.is_explicit()) {
+            return Err(IntegrateError::InvalidParameter {
+                name: "mass",
+                reason: format!(
+                    "DOF {i} is massless (row and column of M are 0): the explicit method `{}` needs a nonsingular M; use an implicit method (newmark, hht, generalized_alpha, backward_euler)",
+                    method.name()
+                ),
             });
         }
         let damping = problem.damping_matrix().map(|c| c.to_owned());
@@ -273,7 +343,15 @@ impl StructuralStepper {
             check_matrix("damping", c.as_ref(), n)?;
         }
         let mut mass_lu = DenseLu::new(n);
-        mass_lu.factorize(mass.as_ref(), t0)?;
+        if massless.is_empty() {
+            mass_lu.factorize(mass.as_ref(), t0)?;
+        } else {
+            let mut regular = mass.clone();
+            for &i in &massless {
+                regular[(i, i)] = 1.0;
+            }
+            mass_lu.factorize(regular.as_ref(), t0)?;
+        }
         let mut stats = Stats {
             lu_decompositions: 1,
             f_evals: 1,
@@ -290,6 +368,7 @@ impl StructuralStepper {
             newton: NewtonOptions::default(),
             mass,
             mass_lu,
+            massless,
             damping,
             t: t0,
             q: q0.to_vec(),

@@ -293,6 +293,7 @@ impl Simulation {
             let touching = contact.force > 0.0;
             if self.in_contact[k] && !touching {
                 self.loss_events += 1;
+                self.wheel_loss_events[k] += 1;
             }
             self.in_contact[k] = touching;
             self.forces[k] = contact.force;

@@ -1,0 +1,305 @@
+//! The run driver: steps a [`Simulation`] to its end time, calls an observer after every
+//! accepted step (which may stop the run, e.g. on Ctrl-C) and returns a [`RunSummary`]: the
+//! extrema of the output-point response with their times, the dynamic amplification against
+//! the quasi-static deflection, the contact-force extrema per wheel, the loss-of-contact
+//! events and the solver statistics.
+//!
+//! The extrema are taken over every accepted step of the scenario's Δt and the start state
+//! (t = 0), independently of how often a caller records its time series.
+//!
+//! Dynamic amplification (references.md §D1.5): `DAF = max_t |w(x_out, t)| / max_t |w_qs(x_out, t)|`
+//! with the quasi-static deflection `w_qs` of [`Simulation::quasi_static_output_deflection`]
+//! (the static wheel loads at their current positions, same modal basis).
+
+use std::ops::ControlFlow;
+
+use super::{Simulation, SolverStats, VehicleBridgeError};
+
+/// What the observer learns about the step just taken.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct StepInfo {
+    /// Number of the step just accepted (1-based).
+    pub step: usize,
+    /// Steps of the whole run (the end time divided by Δt, rounded up).
+    pub steps: usize,
+    /// Coupling iterations this step needed (over all its halvings).
+    pub iterations: usize,
+}
+
+/// Called by [`run`] with the start state and after every accepted step; returning
+/// [`ControlFlow::Break`] stops the run at that step (the summary then has
+/// `completed = false`).
+pub trait RunObserver {
+    /// The start state (t = 0), before the first step.
+    fn start(&mut self, _sim: &Simulation) -> ControlFlow<()> {
+        ControlFlow::Continue(())
+    }
+
+    /// After the step `info.step` of `info.steps` has been accepted.
+    fn after_step(&mut self, sim: &Simulation, info: StepInfo) -> ControlFlow<()>;
+}
+
+/// Any `FnMut(&Simulation, StepInfo) -> ControlFlow<()>` is an observer.
+impl<F> RunObserver for F
+where
+    F: FnMut(&Simulation, StepInfo) -> ControlFlow<()>,
+{
+    fn after_step(&mut self, sim: &Simulation, info: StepInfo) -> ControlFlow<()> {
+        self(sim, info)
+    }
+}
+
+/// An observer that watches nothing.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NoObserver;
+
+impl RunObserver for NoObserver {
+    fn after_step(&mut self, _sim: &Simulation, _info: StepInfo) -> ControlFlow<()> {
+        ControlFlow::Continue(())
+    }
+}
+
+/// A value and the time \[s\] at which it occurred (the first time, on ties).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Extremum {
+    /// The value (in the unit of the quantity).
+    pub value: f64,
+    /// Time \[s\].
+    pub time: f64,
+}
+
+/// Largest and smallest value of a signed quantity over the run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Range {
+    /// Largest value and its time.
+    pub max: Extremum,
+    /// Smallest value and its time.
+    pub min: Extremum,
+}
+
+impl Range {
+    fn new(value: f64, time: f64) -> Self {
+        let e = Extremum { value, time };
+        Self { max: e, min: e }
+    }
+
+    fn update(&mut self, value: f64, time: f64) {
+        if value > self.max.value {
+            self.max = Extremum { value, time };
+        }
+        if value < self.min.value {
+            self.min = Extremum { value, time };
+        }
+    }
+
+    /// `max(|max|, |min|)`.
+    pub fn max_abs(&self) -> f64 {
+        self.max.value.abs().max(self.min.value.abs())
+    }
+}
+
+/// Per-wheel extrema of a run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct WheelSummary {
+    /// Contact force F \[N\]: largest and smallest value with their times.
+    pub force: Range,
+    /// Largest peak contact pressure \[Pa\] (0 for the rigid contact, which has no pressure).
+    pub max_pressure: f64,
+    /// Largest |body acceleration| [m/s²] (0 without a body).
+    pub max_body_acceleration: f64,
+    /// Largest |wheel acceleration| [m/s²].
+    pub max_wheel_acceleration: f64,
+    /// Transitions of this wheel from contact to loss of contact.
+    pub loss_of_contact_events: usize,
+}
+
+/// The result of [`run`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunSummary {
+    /// `true` when the run reached its end time; `false` when the observer stopped it.
+    pub completed: bool,
+    /// Time reached \[s\].
+    pub time_reached: f64,
+    /// The run's end time \[s\] ([`Simulation::end_time`]).
+    pub end_time: f64,
+    /// Steps of Δt taken and planned.
+    pub steps_taken: usize,
+    /// Steps of Δt of the whole run.
+    pub steps_planned: usize,
+    /// Bridge deflection at the output point \[m\] (down positive).
+    pub deflection: Range,
+    /// Bridge acceleration at the output point [m/s²].
+    pub acceleration: Range,
+    /// Largest |quasi-static deflection| at the output point \[m\] over the steps taken
+    /// (`None` for a basis with a rigid-body mode).
+    pub max_quasi_static_deflection: Option<f64>,
+    /// `max |w| / max |w_qs|` at the output point (`None` without a positive quasi-static
+    /// deflection).
+    pub dynamic_amplification: Option<f64>,
+    /// Per wheel.
+    pub wheels: Vec<WheelSummary>,
+    /// Transitions from contact to loss of contact, over all wheels.
+    pub loss_of_contact_events: usize,
+    /// Coupling statistics.
+    pub solver: SolverStats,
+}
+
+impl RunSummary {
+    /// Largest contact force over all wheels \[N\] (at least 0).
+    pub fn max_force(&self) -> f64 {
+        self.wheels
+            .iter()
+            .fold(0.0f64, |m, w| m.max(w.force.max.value))
+    }
+
+    /// Smallest contact force over all wheels \[N\].
+    pub fn min_force(&self) -> f64 {
+        self.wheels
+            .iter()
+            .fold(f64::INFINITY, |m, w| m.min(w.force.min.value))
+    }
+
+    /// Largest peak pressure over all wheels \[Pa\].
+    pub fn max_pressure(&self) -> f64 {
+        self.wheels
+            .iter()
+            .fold(0.0f64, |m, w| m.max(w.max_pressure))
+    }
+
+    /// Largest |body acceleration| over all wheels [m/s²].
+    pub fn max_body_acceleration(&self) -> f64 {
+        self.wheels
+            .iter()
+            .fold(0.0f64, |m, w| m.max(w.max_body_acceleration))
+    }
+
+    /// Largest |wheel acceleration| over all wheels [m/s²].
+    pub fn max_wheel_acceleration(&self) -> f64 {
+        self.wheels
+            .iter()
+            .fold(0.0f64, |m, w| m.max(w.max_wheel_acceleration))
+    }
+}
+
+/// A run that failed at a step: the error and the summary up to the last accepted step.
+#[derive(Debug, thiserror::Error)]
+#[error("{error}")]
+pub struct RunFailure {
+    /// Why the step failed.
+    #[source]
+    pub error: VehicleBridgeError,
+    /// The summary of the steps accepted before the failure (`completed = false`).
+    pub partial: Box<RunSummary>,
+}
+
+/// Accumulates the summary from the simulation state.
+struct Recorder {
+    summary: RunSummary,
+}
+
+impl Recorder {
+    fn new(sim: &Simulation, steps: usize) -> Self {
+        let t = sim.t();
+        let (d, _, a) = sim.output_point_response();
+        let wheels = sim
+            .wheels()
+            .iter()
+            .map(|w| WheelSummary {
+                force: Range::new(w.contact.force, t),
+                max_pressure: w.contact.max_pressure.abs(),
+                max_body_acceleration: w.body_acceleration.abs(),
+                max_wheel_acceleration: w.wheel_acceleration.abs(),
+                loss_of_contact_events: 0,
+            })
+            .collect();
+        Self {
+            summary: RunSummary {
+                completed: false,
+                time_reached: t,
+                end_time: sim.end_time(),
+                steps_taken: 0,
+                steps_planned: steps,
+                deflection: Range::new(d, t),
+                acceleration: Range::new(a, t),
+                max_quasi_static_deflection: None,
+                dynamic_amplification: None,
+                wheels,
+                loss_of_contact_events: sim.loss_of_contact_events(),
+                solver: sim.stats(),
+            },
+        }
+    }
+
+    fn record(&mut self, sim: &Simulation) -> Result<(), VehicleBridgeError> {
+        let s = &mut self.summary;
+        let t = sim.t();
+        let (d, _, a) = sim.output_point_response();
+        s.deflection.update(d, t);
+        s.acceleration.update(a, t);
+        if let Some(qs) = sim.quasi_static_output_deflection()? {
+            s.max_quasi_static_deflection =
+                Some(s.max_quasi_static_deflection.unwrap_or(0.0).max(qs.abs()));
+        }
+        for ((w, sample), &events) in s
+            .wheels
+            .iter_mut()
+            .zip(sim.wheels())
+            .zip(sim.wheel_loss_of_contact_events())
+        {
+            w.force.update(sample.contact.force, t);
+            w.max_pressure = w.max_pressure.max(sample.contact.max_pressure.abs());
+            w.max_body_acceleration = w.max_body_acceleration.max(sample.body_acceleration.abs());
+            w.max_wheel_acceleration = w
+                .max_wheel_acceleration
+                .max(sample.wheel_acceleration.abs());
+            w.loss_of_contact_events = events;
+        }
+        s.time_reached = t;
+        s.steps_taken += 1;
+        s.loss_of_contact_events = sim.loss_of_contact_events();
+        s.solver = sim.stats();
+        Ok(())
+    }
+
+    fn finish(mut self, completed: bool) -> RunSummary {
+        let s = &mut self.summary;
+        s.completed = completed;
+        s.dynamic_amplification = s
+            .max_quasi_static_deflection
+            .filter(|q| *q > 0.0)
+            .map(|q| s.deflection.max_abs() / q);
+        self.summary
+    }
+}
+
+/// Steps `sim` to [`Simulation::end_time`] in steps of the scenario's Δt
+/// ([`Simulation::planned_steps`] of them), calling `observer` with the start state and after
+/// every accepted step. Stops early (with `completed = false`) when the observer returns
+/// [`ControlFlow::Break`]. A step that fails returns the error with the summary up to the last
+/// accepted step.
+pub fn run(sim: &mut Simulation, observer: &mut dyn RunObserver) -> Result<RunSummary, RunFailure> {
+    let steps = sim.planned_steps();
+    let mut recorder = Recorder::new(sim, steps);
+    if observer.start(sim).is_break() {
+        return Ok(recorder.finish(false));
+    }
+    for step in 1..=steps {
+        let before = sim.stats().iterations;
+        let stepped = sim.step().and_then(|()| recorder.record(sim));
+        if let Err(error) = stepped {
+            return Err(RunFailure {
+                error,
+                partial: Box::new(recorder.finish(false)),
+            });
+        }
+        let info = StepInfo {
+            step,
+            steps,
+            iterations: sim.stats().iterations - before,
+        };
+        if observer.after_step(sim, info).is_break() {
+            return Ok(recorder.finish(step == steps));
+        }
+    }
+    Ok(recorder.finish(true))
+}
