@@ -10,8 +10,8 @@ use halfspace::Body;
 use serde::Deserialize;
 use serde_json::{Value, json};
 use sim::ball_drop::{
-    BallDrop, BallDropResult, BallShape, ForceModel, HertzImpact, Integrator, IntegratorSettings,
-    METHOD_NAMES, sphere_mass,
+    BallDrop, BallDropError, BallDropResult, BallShape, ForceModel, HertzImpact, Integrator,
+    IntegratorSettings, METHOD_NAMES, sphere_mass,
 };
 
 use crate::errors::bad_input;
@@ -297,10 +297,15 @@ const OUTPUT_SET: &[&str] = &["timeseries.csv", "summary.json", "ball_drop.png"]
 pub fn run(text: &str, out: &Path, json: bool, integrator: Option<&str>) -> Result<()> {
     let prepared = parse(text, integrator).map_err(bad_input)?;
     let run_out = RunOutput::create(out, OUTPUT_SET)?;
-    let result = prepared
-        .scenario
-        .simulate(true)
-        .map_err(|e| anyhow!("ball drop: {e}"))?;
+    let result = prepared.scenario.simulate(true).map_err(|e| {
+        // A parameter or material the model rejects is the input's fault (exit 2).
+        let input = matches!(
+            e,
+            BallDropError::InvalidParameter { .. } | BallDropError::Material { .. }
+        );
+        let e = anyhow!("ball drop: {e}");
+        if input { bad_input(e) } else { e }
+    })?;
     let summary = summary(&prepared, &result);
     output::write_csv(
         &run_out.path("timeseries.csv"),

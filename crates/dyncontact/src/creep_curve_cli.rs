@@ -99,7 +99,7 @@ pub fn run(
     let flags = ["--creepage-x", "--creepage-y", "--spin"];
     let chosen: Vec<usize> = (0..3).filter(|&i| sweeps[i].is_some()).collect();
     if chosen.len() != 1 {
-        return Err(BadInput::new(
+        return Err(BadInput::error(
             "give exactly one of --creepage-x, --creepage-y, --spin (start:stop:count)",
         ));
     }
@@ -108,12 +108,12 @@ pub fn run(
     let case = contact_case::parse(text, base).map_err(bad_input)?;
     let mu = case
         .mu
-        .ok_or_else(|| BadInput::new("[friction]: a creep curve needs `mu`"))?;
+        .ok_or_else(|| BadInput::error("[friction]: a creep curve needs `mu`"))?;
     let base_creep = match case.tangential.map(|t| t.task) {
         None => Creepages::default(),
         Some(TangentialTask::Rolling(RollingLoad::Creepages(c))) => c,
         Some(_) => {
-            return Err(BadInput::new(
+            return Err(BadInput::error(
                 "[kinematics]: a creep curve sweeps creepages; give creepages (the unswept ones are held) or omit [kinematics]",
             ));
         }

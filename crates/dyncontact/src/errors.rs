@@ -26,7 +26,7 @@ pub struct BadInput(String);
 
 impl BadInput {
     /// A bad-input error with this message.
-    pub fn new(message: impl Into<String>) -> anyhow::Error {
+    pub fn error(message: impl Into<String>) -> anyhow::Error {
         anyhow::Error::new(BadInput(message.into()))
     }
 }
@@ -44,7 +44,7 @@ pub fn bad_input(e: anyhow::Error) -> anyhow::Error {
     if is_bad_input(&e) {
         e
     } else {
-        BadInput::new(format!("{e:#}"))
+        BadInput::error(format!("{e:#}"))
     }
 }
 
@@ -68,7 +68,7 @@ mod tests {
 
     #[test]
     fn classification_survives_context() {
-        let e = Err::<(), _>(BadInput::new("[bridge] length = -1"))
+        let e = Err::<(), _>(BadInput::error("[bridge] length = -1"))
             .context("reading x.toml")
             .unwrap_err();
         assert_eq!(exit_code(&e), EXIT_BAD_INPUT);

@@ -221,7 +221,17 @@ pub fn run(text: &str, out: &Path, json: bool) -> Result<()> {
         &settings,
         &points,
     )
-    .map_err(|e| anyhow!("moving-load run: {e}"))?;
+    .map_err(|e| {
+        // Parameters, counts and positions the solver rejects are the input's fault (exit 2).
+        let input = matches!(
+            e,
+            beam::BeamError::InvalidParameter { .. }
+                | beam::BeamError::InvalidCount { .. }
+                | beam::BeamError::OutsideSpan { .. }
+        );
+        let e = anyhow!("moving-load run: {e}");
+        if input { bad_input(e) } else { e }
+    })?;
     let wall = start.elapsed().as_secs_f64();
     let summary = summarise(&bridge, &loads, &response, &name, dt, wall)?;
     write_timeseries(&run_out, &loads, &response)?;

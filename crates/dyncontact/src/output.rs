@@ -48,7 +48,7 @@ impl RunOutput {
     pub fn create(dir: &Path, set: &'static [&'static str]) -> Result<Self> {
         let shown = dir.display();
         if dir.exists() && !dir.is_dir() {
-            return Err(BadInput::new(format!(
+            return Err(BadInput::error(format!(
                 "--out {shown}: exists and is not a directory"
             )));
         }
@@ -58,13 +58,13 @@ impl RunOutput {
                 .filter(|p| !p.as_os_str().is_empty())
                 .unwrap_or(Path::new("."));
             if !parent.is_dir() {
-                return Err(BadInput::new(format!(
+                return Err(BadInput::error(format!(
                     "--out {shown}: the parent directory {} does not exist",
                     parent.display()
                 )));
             }
             fs::create_dir(dir).map_err(|e| {
-                BadInput::new(format!("--out {shown}: cannot create the directory: {e}"))
+                BadInput::error(format!("--out {shown}: cannot create the directory: {e}"))
             })?;
         }
         let nanos = SystemTime::now()
@@ -72,7 +72,7 @@ impl RunOutput {
             .map_or(0, |d| d.as_nanos());
         let private = dir.join(format!("{RUN_DIR_PREFIX}{}-{nanos}", std::process::id()));
         fs::create_dir(&private).map_err(|e| {
-            BadInput::new(format!("--out {shown}: the directory is not writable: {e}"))
+            BadInput::error(format!("--out {shown}: the directory is not writable: {e}"))
         })?;
         let run = RunOutput {
             dir: dir.to_path_buf(),
@@ -84,7 +84,7 @@ impl RunOutput {
         let probe = run.private.join(".probe");
         fs::write(&probe, [0u8; 4096])
             .and_then(|()| fs::remove_file(&probe))
-            .map_err(|e| BadInput::new(format!("--out {shown}: cannot write into it: {e}")))?;
+            .map_err(|e| BadInput::error(format!("--out {shown}: cannot write into it: {e}")))?;
         Ok(run)
     }
 
@@ -398,6 +398,28 @@ mod tests {
                 "{text}"
             );
         }
+    }
+
+    /// A full disk (Linux's /dev/full answers every write with ENOSPC): the error names the file.
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn full_disk_error_names_the_file() {
+        let full = Path::new("/dev/full");
+        let mut w = CsvStream::create(full, &["t", "x"]).unwrap();
+        let mut failed = None;
+        for _ in 0..10_000 {
+            if let Err(e) = w.row(&[1.0, 2.0]) {
+                failed = Some(e);
+                break;
+            }
+        }
+        let e = match failed {
+            Some(e) => e,
+            None => w.finish().unwrap_err(),
+        };
+        let text = format!("{e:#}");
+        assert!(text.contains("cannot write /dev/full"), "{text}");
+        assert!(text.contains("No space left"), "{text}");
     }
 
     #[test]

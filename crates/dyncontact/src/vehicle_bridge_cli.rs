@@ -509,7 +509,7 @@ pub fn simulate_full(
     let steps = sim.planned_steps();
     let (end, dt) = (sim.end_time(), sim.scenario().dt);
     if steps as f64 > MAX_STEPS {
-        return Err(BadInput::new(format!(
+        return Err(BadInput::error(format!(
             "[integrator] dt = {dt:e} s over the run of {end} s gives {steps:.3e} steps: at most {MAX_STEPS:e} are allowed (raise dt or shorten the run)"
         )));
     }
@@ -532,11 +532,11 @@ pub fn simulate_full(
     // this observer streams the time series, takes the pressure snapshots and stops the run
     // on Ctrl-C.
     let mut observer = |sim: &Simulation, info: run::StepInfo| {
-        if info.step % every == 0 || info.step == info.steps {
-            if let Err(e) = recorder.record(sim, info.iterations) {
-                write_error = Some(e);
-                return ControlFlow::Break(());
-            }
+        if (info.step.is_multiple_of(every) || info.step == info.steps)
+            && let Err(e) = recorder.record(sim, info.iterations)
+        {
+            write_error = Some(e);
+            return ControlFlow::Break(());
         }
         let x = sim.wheel_position(0);
         if next_snap < snap_positions.len() && x >= snap_positions[next_snap] {
@@ -544,7 +544,7 @@ pub fn simulate_full(
             snaps.push((x, buf.clone()));
             next_snap += 1;
         }
-        if info.step % 64 == 0 {
+        if info.step.is_multiple_of(64) {
             bar.set_position(info.step as u64);
         }
         if interrupt::requested() {

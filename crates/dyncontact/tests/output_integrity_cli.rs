@@ -103,7 +103,7 @@ fn exit_codes_are_documented_and_consistent() {
         assert!(stderr(&o).contains("error"), "{args:?}: {}", stderr(&o));
     }
     // A failed run: the normal solver stopped after 2 iterations (not converged).
-    let case = std::fs::read_to_string(&contact).unwrap() + "\n[solver]\nmax_iter = 2\n";
+    let case = std::fs::read_to_string(contact).unwrap() + "\n[solver]\nmax_iter = 2\n";
     let case = write(dir.path(), "short.toml", &case);
     let o = dyncontact(&["contact", &case, "--json"]);
     assert_eq!(code(&o), Some(1), "{}", stderr(&o));
