@@ -169,10 +169,7 @@ fn mutate(lines: &mut Vec<String>, rng: &mut ChaCha8Rng) {
 fn key_words(text: &str) -> Vec<String> {
     let mut words = Vec::new();
     for l in text.lines() {
-        let t = l.trim();
-        if t.starts_with('#') {
-            continue;
-        }
+        let t = l.split('#').next().unwrap_or("").trim();
         if t.starts_with('[') {
             let name = t.trim_matches(|c| c == '[' || c == ']');
             words.extend(name.split('.').map(str::to_string));
@@ -244,6 +241,19 @@ fn campaign(n: usize, run: Option<Duration>) -> Tally {
         }
         let mutated = lines.join("\n") + "\n";
         let label = format!("case {case} ({name})");
+        if run.is_some() && case % 100 == 0 {
+            println!(
+                "progress: {case} cases, {} accepted, {} runs ok, {} run errors, {} run panics, {} over the limit, {} non-finite; read: {} panics, {} without a key",
+                tally.accepted,
+                tally.runs_ok,
+                tally.run_errors,
+                tally.run_panics.len(),
+                tally.run_over_limit.len(),
+                tally.run_non_finite.len(),
+                tally.panics.len(),
+                tally.without_key.len()
+            );
+        }
         tally.cases += 1;
         LARGEST.with(|l| l.set(0));
         let outcome = catch_unwind(AssertUnwindSafe(|| read(&mutated, &base)));
@@ -264,10 +274,10 @@ fn campaign(n: usize, run: Option<Duration>) -> Tally {
                     tally.without_key.push(format!("{label}: {message}"));
                 }
             }
-            Ok(accepted) => {
+            Ok(_) => {
                 tally.accepted += 1;
                 if let Some(limit) = run {
-                    run_case(accepted, limit, &label, &mutated, &mut tally);
+                    run_case(&base, limit, &label, &mutated, &mut tally);
                 }
             }
         }
@@ -336,11 +346,13 @@ fn normal_contact(case: &config::contact::PreparedCase) -> RunResult {
     }
 }
 
-fn run_case(read: Read, limit: Duration, label: &str, text: &str, tally: &mut Tally) {
+/// Read (again, in the worker thread: the configs are not `Send`) and run one case.
+fn run_case(base: &Path, limit: Duration, label: &str, text: &str, tally: &mut Tally) {
     let (tx, rx) = mpsc::channel();
     let deadline = Instant::now() + limit;
+    let (base, owned) = (base.to_path_buf(), text.to_string());
     std::thread::spawn(move || {
-        let r = catch_unwind(AssertUnwindSafe(|| simulate(read, deadline)));
+        let r = catch_unwind(AssertUnwindSafe(|| simulate(read(&owned, &base), deadline)));
         let _ = tx.send(r);
     });
     match rx.recv_timeout(limit + Duration::from_secs(1)) {
