@@ -208,7 +208,7 @@ fn run_scenario(
         integrator: integrator.map(str::to_string),
     };
     match sim::config::load(&text, &base, &options)? {
-        ScenarioConfig::BallDrop(config) => ball_drop_cli::run(config, out, json),
+        ScenarioConfig::BallDrop(config) => ball_drop_cli::run(*config, out, json),
         ScenarioConfig::Contact(case) => run_contact(*case, json, Some(out)),
         ScenarioConfig::MovingLoad(config) => moving_load_cli::run(*config, out, json),
         ScenarioConfig::VehicleBridge(config) => vehicle_bridge_cli::run(*config, out, json),

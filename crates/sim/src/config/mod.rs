@@ -62,7 +62,7 @@ pub const SCENARIO_KINDS: &[&str] = &["ball_drop", "contact", "moving_load", "ve
 /// A scenario of `dyncontact run`, validated and ready for its simulation.
 pub enum ScenarioConfig {
     /// `kind = "ball_drop"`.
-    BallDrop(ball_drop::BallDropConfig),
+    BallDrop(Box<ball_drop::BallDropConfig>),
     /// `kind = "contact"`.
     Contact(Box<contact::ContactConfig>),
     /// `kind = "moving_load"`.
@@ -119,7 +119,8 @@ pub fn load(text: &str, base: &Path, options: &LoadOptions) -> Result<ScenarioCo
     match kind.as_str() {
         "ball_drop" => {
             let file = deserialize(table, text)?;
-            ball_drop::build(file, options.integrator.as_deref()).map(ScenarioConfig::BallDrop)
+            ball_drop::build(file, options.integrator.as_deref())
+                .map(|c| ScenarioConfig::BallDrop(Box::new(c)))
         }
         "contact" => {
             let file = deserialize(table, text)?;

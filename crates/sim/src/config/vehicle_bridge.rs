@@ -569,7 +569,7 @@ fn check_run_length(s: &Scenario, every: usize) -> Result<(), ConfigError> {
         let travel = hi - lo + s.speed * end + 2.0;
         let points = travel * w_max * 64.0 / std::f64::consts::TAU;
         let work = points * p.wavenumbers.len() as f64;
-        if !(work <= MAX_IRREGULARITY_WORK) {
+        if work.is_nan() || work > MAX_IRREGULARITY_WORK {
             return Err(ConfigError::TooLarge(format!(
                 "the random irregularity over {} m of track (vehicle.speed × duration) with irregularity.components = {} and irregularity.lambda_min needs about {} cosine evaluations to tabulate (limit {})",
                 checks::number(travel),
@@ -584,7 +584,7 @@ fn check_run_length(s: &Scenario, every: usize) -> Result<(), ConfigError> {
         // An FFT convolution on the doubled grid per CG iteration, ~20 iterations per solve,
         // ~3 solves per step and wheel.
         let work = steps * s.wheels.len() as f64 * 60.0 * 4.0 * n * (4.0 * n).log2().max(1.0) * 5.0;
-        if !(work <= MAX_BEM_WORK) {
+        if work.is_nan() || work > MAX_BEM_WORK {
             return Err(ConfigError::TooLarge(format!(
                 "boundary-element contact on a {elements} × {elements} grid (contact.grid) for {} wheels over {} steps needs about {} floating-point operations (limit {}); use a coarser contact.grid, model = \"hertz\" or a larger integrator.dt",
                 s.wheels.len(),
