@@ -5,221 +5,21 @@
 use std::path::Path;
 use std::time::Instant;
 
-use anyhow::{Result, anyhow, bail};
-use halfspace::Body;
-use serde::Deserialize;
+use anyhow::{Result, anyhow};
 use serde_json::{Value, json};
 use sim::ball_drop::{
-    BallDrop, BallDropError, BallDropResult, BallShape, ForceModel, HertzImpact, Integrator,
-    IntegratorSettings, METHOD_NAMES, sphere_mass,
+    BallDrop, BallDropError, BallDropResult, ForceModel, HertzImpact, Integrator,
+    IntegratorSettings, METHOD_NAMES,
 };
+use sim::config::ball_drop::BallDropConfig;
 
 use crate::errors::bad_input;
 use crate::output::{self, RunOutput};
 use crate::plot;
 use crate::plot::{Panel, Series};
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct Scenario {
-    kind: String,
-    /// Simulated time \[s\] (default 1.0).
-    duration: Option<f64>,
-    /// Gravitational acceleration [m/s²] (default 9.81).
-    gravity: Option<f64>,
-    ball: BallSpec,
-    surface: SurfaceSpec,
-    initial: InitialSpec,
-    contact: Option<ContactSpec>,
-    integrator: Option<IntegratorSpec>,
-    output: Option<OutputSpec>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct BallSpec {
-    radius: Option<f64>,
-    radius_x: Option<f64>,
-    radius_y: Option<f64>,
-    density: Option<f64>,
-    mass: Option<f64>,
-    rigid: Option<bool>,
-    #[serde(rename = "E")]
-    e: Option<f64>,
-    nu: Option<f64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct SurfaceSpec {
-    rigid: Option<bool>,
-    #[serde(rename = "E")]
-    e: Option<f64>,
-    nu: Option<f64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct InitialSpec {
-    height: f64,
-    velocity: Option<f64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct ContactSpec {
-    model: Option<String>,
-    damping: Option<f64>,
-    elements: Option<usize>,
-    tol: Option<f64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct IntegratorSpec {
-    method: Option<String>,
-    rtol: Option<f64>,
-    atol: Option<f64>,
-    dt: Option<f64>,
-    dt_flight: Option<f64>,
-    guard_step: Option<f64>,
-    max_step: Option<f64>,
-    alpha: Option<f64>,
-    rho_inf: Option<f64>,
-    beta: Option<f64>,
-    gamma: Option<f64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct OutputSpec {
-    interval: Option<f64>,
-    plot: Option<bool>,
-}
-
-/// A parsed scenario.
-pub struct Prepared {
-    pub scenario: BallDrop,
-    pub plot: bool,
-    settings: (Option<f64>, Option<f64>, Option<f64>),
-}
-
-fn body(section: &str, rigid: Option<bool>, e: Option<f64>, nu: Option<f64>) -> Result<Body> {
-    match (rigid.unwrap_or(false), e, nu) {
-        (true, None, None) => Ok(Body::Rigid),
-        (true, _, _) => bail!("[{section}]: a rigid body takes no `E` or `nu`"),
-        (false, Some(e), Some(nu)) => {
-            Body::elastic(e, nu).map_err(|err| anyhow!("[{section}] {err}"))
-        }
-        (false, None, _) => bail!("[{section}]: missing `E` [Pa] (or set `rigid = true`)"),
-        (false, Some(_), None) => bail!("[{section}]: missing `nu`"),
-    }
-}
-
-/// Parse a scenario file; `integrator` overrides `[integrator] method`.
-pub fn parse(text: &str, integrator: Option<&str>) -> Result<Prepared> {
-    let s: Scenario = toml::from_str(text).map_err(|e| anyhow!("invalid scenario file: {e}"))?;
-    if s.kind != "ball_drop" {
-        bail!("`kind` = \"{}\" is not a ball-drop scenario", s.kind);
-    }
-    let b = &s.ball;
-    let shape = match (b.radius, b.radius_x, b.radius_y) {
-        (Some(radius), None, None) => BallShape::Sphere { radius },
-        (None, Some(radius_x), Some(radius_y)) => BallShape::Ellipsoid { radius_x, radius_y },
-        (None, None, None) => bail!("[ball]: missing `radius` (or `radius_x` and `radius_y`)"),
-        (Some(_), _, _) => {
-            bail!("[ball]: give either `radius` or `radius_x` and `radius_y`, not both")
-        }
-        (None, _, _) => bail!("[ball]: an ellipsoid needs both `radius_x` and `radius_y`"),
-    };
-    let mass = match (b.mass, b.density, shape) {
-        (Some(m), None, _) => m,
-        (None, Some(rho), BallShape::Sphere { radius }) => {
-            if !(rho.is_finite() && rho > 0.0) {
-                bail!("[ball] `density` = {rho}: must be finite and > 0 [kg/m³]");
-            }
-            sphere_mass(radius, rho)
-        }
-        (None, Some(_), BallShape::Ellipsoid { .. }) => {
-            bail!("[ball]: `density` needs a sphere (`radius`); give the `mass` of an ellipsoid")
-        }
-        (Some(_), Some(_), _) => bail!("[ball]: give either `mass` or `density`, not both"),
-        (None, None, _) => bail!("[ball]: missing `mass` [kg] or `density` [kg/m³]"),
-    };
-    let ball = body("ball", b.rigid, b.e, b.nu)?;
-    let surface = body("surface", s.surface.rigid, s.surface.e, s.surface.nu)?;
-    let c = s.contact.as_ref();
-    let model_name = c.and_then(|c| c.model.as_deref()).unwrap_or("hertz");
-    let model = match model_name {
-        "hertz" => {
-            if c.is_some_and(|c| c.elements.is_some() || c.tol.is_some()) {
-                bail!("[contact]: `elements` and `tol` belong to model = \"bem\"");
-            }
-            ForceModel::Hertz
-        }
-        "bem" => ForceModel::Bem {
-            elements: c.and_then(|c| c.elements).unwrap_or(32),
-            tol: c.and_then(|c| c.tol).unwrap_or(1e-10),
-        },
-        other => bail!("[contact] `model` = \"{other}\": expected \"hertz\" or \"bem\""),
-    };
-    let i = s.integrator.as_ref();
-    let method = integrator
-        .or_else(|| i.and_then(|i| i.method.as_deref()))
-        .unwrap_or("radau5");
-    let defaults = IntegratorSettings::default();
-    let mut parameters = Vec::new();
-    if let Some(i) = i {
-        for (name, value) in [
-            ("alpha", i.alpha),
-            ("rho_inf", i.rho_inf),
-            ("beta", i.beta),
-            ("gamma", i.gamma),
-        ] {
-            if let Some(v) = value {
-                parameters.push((name, v));
-            }
-        }
-    }
-    let settings = IntegratorSettings {
-        rtol: i.and_then(|i| i.rtol).unwrap_or(defaults.rtol),
-        atol: i.and_then(|i| i.atol).unwrap_or(defaults.atol),
-        dt: i.and_then(|i| i.dt).unwrap_or(defaults.dt),
-        dt_flight: i.and_then(|i| i.dt_flight),
-        guard_step: i.and_then(|i| i.guard_step),
-        max_step: i.and_then(|i| i.max_step),
-        parameters,
-    };
-    let integrator = Integrator::from_name(method, &settings).map_err(|e| {
-        anyhow!("{e}").context(format!(
-            "[integrator] method = \"{method}\" (known: {})",
-            METHOD_NAMES.join(", ")
-        ))
-    })?;
-    let scenario = BallDrop {
-        mass,
-        shape,
-        ball,
-        surface,
-        gravity: s.gravity.unwrap_or(9.81),
-        height: s.initial.height,
-        velocity: s.initial.velocity.unwrap_or(0.0),
-        duration: s.duration.unwrap_or(1.0),
-        model,
-        damping: c.and_then(|c| c.damping).unwrap_or(0.0),
-        integrator,
-        output_interval: s.output.as_ref().and_then(|o| o.interval),
-    };
-    scenario.validate().map_err(|e| anyhow!("{e}"))?;
-    Ok(Prepared {
-        scenario,
-        plot: s.output.as_ref().and_then(|o| o.plot).unwrap_or(true),
-        settings: (Some(settings.rtol), Some(settings.atol), Some(settings.dt)),
-    })
-}
-
 /// The JSON summary.
-pub fn summary(p: &Prepared, r: &BallDropResult) -> Value {
+pub fn summary(p: &BallDropConfig, r: &BallDropResult) -> Value {
     let sc = &p.scenario;
     let st = &r.stats;
     let (rtol, atol, dt) = p.settings;
@@ -294,8 +94,7 @@ pub fn summary(p: &Prepared, r: &BallDropResult) -> Value {
 const OUTPUT_SET: &[&str] = &["timeseries.csv", "summary.json", "ball_drop.png"];
 
 /// `dyncontact run FILE` for `kind = "ball_drop"`.
-pub fn run(text: &str, out: &Path, json: bool, integrator: Option<&str>) -> Result<()> {
-    let prepared = parse(text, integrator).map_err(bad_input)?;
+pub fn run(prepared: BallDropConfig, out: &Path, json: bool) -> Result<()> {
     let run_out = RunOutput::create(out, OUTPUT_SET)?;
     let result = prepared.scenario.simulate(true).map_err(|e| {
         // A parameter or material the model rejects is the input's fault (exit 2).
@@ -333,7 +132,7 @@ pub fn run(text: &str, out: &Path, json: bool, integrator: Option<&str>) -> Resu
     Ok(())
 }
 
-fn print_summary(p: &Prepared, r: &BallDropResult) {
+fn print_summary(p: &BallDropConfig, r: &BallDropResult) {
     let st = &r.stats;
     println!(
         "ball drop: m = {:.6e} kg, K = {:.6e} N/m^1.5, {} impacts in {} s; {}: {} steps ({} rejected), {} f-evals, {:.3} ms",

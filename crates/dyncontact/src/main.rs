@@ -8,8 +8,6 @@
 mod ball_drop_cli;
 mod bench;
 mod bench_tangential;
-/// The `[bridge]` block shared by `modes`, `moving_load` and `vehicle_bridge` scenarios.
-mod bridge;
 mod contact_case;
 mod creep_curve_cli;
 mod errors;
@@ -23,15 +21,14 @@ mod vehicle_bridge_output;
 
 use std::path::{Path, PathBuf};
 
-use anyhow::{Context, Result, anyhow, bail};
+use anyhow::{Context, Result, bail};
 use clap::{Parser, Subcommand, ValueEnum};
+use sim::config::ScenarioConfig;
 
 use errors::bad_input;
 
 /// The built-in default scenario of `dyncontact run` (the example file itself, embedded).
 const DEFAULT_SCENARIO: &str = vehicle_bridge_cli::DEFAULT;
-/// Scenario kinds `run` understands (keep in step with `run_scenario`).
-const SCENARIO_KINDS: &[&str] = &["ball_drop", "contact", "moving_load", "vehicle_bridge"];
 const DEFAULT_SCENARIO_PATH: &str = "examples/vehicle_bridge_default.toml";
 
 #[derive(Parser)]
@@ -163,8 +160,8 @@ fn run_cli() -> Result<()> {
             integrator,
         } => run_scenario(file.as_deref(), &out, json, integrator.as_deref()),
         Command::Contact { file, json, out } => {
-            let text = read(&file)?;
-            run_contact(&text, base_dir(&file), json, out.as_deref())
+            let case = contact_case::parse(&read(&file)?, base_dir(&file)).map_err(bad_input)?;
+            run_contact(case, json, out.as_deref())
         }
         Command::Modes { file, json, out } => modes_cli::run(&read(&file)?, json, out.as_deref()),
         Command::Bench { target, max_n } => match target {
@@ -218,46 +215,18 @@ fn run_scenario(
             (DEFAULT_SCENARIO.to_string(), PathBuf::from("."))
         }
     };
-    let kind = scenario_kind(&text, integrator).map_err(bad_input)?;
-    match kind.as_str() {
-        "ball_drop" => ball_drop_cli::run(&text, out, json, integrator),
-        "contact" => run_contact(&text, &base, json, Some(out)),
-        "moving_load" => moving_load_cli::run(&text, out, json),
-        "vehicle_bridge" => vehicle_bridge_cli::run(&text, out, json),
-        other => unreachable!("scenario_kind checked `kind` = {other}"),
-    }
-}
-
-/// The scenario's `kind` (checked against [`SCENARIO_KINDS`] and `--integrator`).
-fn scenario_kind(text: &str, integrator: Option<&str>) -> Result<String> {
-    let table: toml::Table =
-        toml::from_str(text).map_err(|e| anyhow!("invalid scenario file: {e}"))?;
-    let kind = match table.get("kind") {
-        Some(toml::Value::String(k)) => k.clone(),
-        Some(other) => bail!("`kind` must be a string, found {other}"),
-        None => bail!(
-            "missing `kind` (known kinds: {})",
-            SCENARIO_KINDS.join(", ")
-        ),
+    let options = sim::config::LoadOptions {
+        integrator: integrator.map(str::to_string),
     };
-    if !SCENARIO_KINDS.contains(&kind.as_str()) {
-        bail!(
-            "unknown `kind` = \"{kind}\" (known kinds: {})",
-            SCENARIO_KINDS.join(", ")
-        );
+    match sim::config::load(&text, &base, &options).map_err(|e| bad_input(e.into()))? {
+        ScenarioConfig::BallDrop(config) => ball_drop_cli::run(*config, out, json),
+        ScenarioConfig::Contact(case) => run_contact(*case, json, Some(out)),
+        ScenarioConfig::MovingLoad(config) => moving_load_cli::run(*config, out, json),
+        ScenarioConfig::VehicleBridge(config) => vehicle_bridge_cli::run(*config, out, json),
     }
-    if let Some(name) = integrator
-        && kind != "ball_drop"
-    {
-        bail!(
-            "--integrator {name}: kind = \"{kind}\" does not take --integrator; set its integrator in the scenario file"
-        );
-    }
-    Ok(kind)
 }
 
-fn run_contact(text: &str, base: &Path, json: bool, out: Option<&Path>) -> Result<()> {
-    let case = contact_case::parse(text, base).map_err(bad_input)?;
+fn run_contact(case: contact_case::PreparedCase, json: bool, out: Option<&Path>) -> Result<()> {
     let run_out = out
         .map(|dir| output::RunOutput::create(dir, contact_case::OUTPUT_SET))
         .transpose()?;

@@ -2,14 +2,14 @@
 
 use std::path::Path;
 
-use anyhow::{Result, anyhow, bail};
+use anyhow::{Result, anyhow};
 use beam::Derivative;
 use serde::Serialize;
 
-use crate::bridge::{self, Bridge};
 use crate::errors::bad_input;
 use crate::output::{self, RunOutput};
 use crate::plot;
+use sim::config::bridge::Bridge;
 
 #[derive(Debug, Serialize)]
 pub struct ModeRow {
@@ -29,19 +29,9 @@ pub struct ModesSummary {
     pub modes: Vec<ModeRow>,
 }
 
-/// Read a file's `[bridge]` block. Other top-level keys are accepted only in a scenario file
-/// (one with `kind`), where they belong to the scenario.
+/// Read a file's `[bridge]` block (a bridge file, or any scenario file that has one).
 pub fn read_bridge(text: &str) -> Result<Bridge> {
-    let table: toml::Table =
-        toml::from_str(text).map_err(|e| anyhow!("invalid bridge file: {e}"))?;
-    if !table.contains_key("kind")
-        && let Some(other) = table.keys().find(|k| k.as_str() != "bridge")
-    {
-        bail!(
-            "unknown key `{other}`: a bridge file holds only a [bridge] section (or is a scenario with `kind`)"
-        );
-    }
-    bridge::from_table(&table)?.build()
+    Ok(sim::config::bridge::parse_bridge_file(text)?)
 }
 
 pub fn summary(b: &Bridge) -> ModesSummary {

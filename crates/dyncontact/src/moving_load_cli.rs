@@ -4,61 +4,15 @@
 use std::path::Path;
 use std::time::Instant;
 
-use anyhow::{Result, anyhow, bail};
-use beam::{Axle, ModalIntegrator, MovingLoadSettings, MovingLoads, simulate_moving_loads};
-use integrate::structural::StructuralMethod;
-use serde::{Deserialize, Serialize};
+use anyhow::{Result, anyhow};
+use beam::{MovingLoads, simulate_moving_loads};
+use serde::Serialize;
+use sim::config::bridge::Bridge;
+use sim::config::moving_load::MovingLoadConfig;
 
-use crate::bridge::{Bridge, BridgeSpec};
 use crate::errors::bad_input;
 use crate::output::{self, RunOutput};
 use crate::plot;
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct MovingLoadScenario {
-    kind: String,
-    bridge: BridgeSpec,
-    load: LoadSpec,
-    integrator: Option<IntegratorSpec>,
-    output: Option<OutputSpec>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct LoadSpec {
-    /// One force \[N\] ...
-    force: Option<f64>,
-    /// ... or axles [[offset behind the first axle (m), force (N)], ...].
-    axles: Option<Vec<[f64; 2]>>,
-    /// Speed [m/s].
-    speed: f64,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct IntegratorSpec {
-    /// "exact" (default: exact modal step for piecewise-linear forcing) or a structural method:
-    /// newmark, hht, generalized_alpha, backward_euler, verlet, leapfrog, central_difference, ...
-    method: Option<String>,
-    /// Time step \[s\] (default 1e-4).
-    dt: Option<f64>,
-    beta: Option<f64>,
-    gamma: Option<f64>,
-    alpha: Option<f64>,
-    rho_inf: Option<f64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct OutputSpec {
-    /// Extra response points \[m\] (midspan is always the first).
-    points: Option<Vec<f64>>,
-    /// Free vibration simulated after the last axle leaves \[s\] (default: 3 periods of mode 1, at most 5 s).
-    free_vibration: Option<f64>,
-    /// Record every n-th step (default: about 20 000 samples in all).
-    every: Option<usize>,
-}
 
 #[derive(Debug, Serialize)]
 pub struct MovingLoadSummary {
@@ -82,136 +36,19 @@ pub struct MovingLoadSummary {
     pub wall_time_s: f64,
 }
 
-fn integrator(spec: Option<&IntegratorSpec>) -> Result<(ModalIntegrator, String, f64)> {
-    let dt = spec.and_then(|s| s.dt).unwrap_or(1e-4);
-    if !dt.is_finite() || dt <= 0.0 {
-        bail!("[integrator] `dt` = {dt}: must be a positive number of seconds");
-    }
-    let name = spec
-        .and_then(|s| s.method.clone())
-        .unwrap_or_else(|| "exact".into());
-    let mut params = Vec::new();
-    if let Some(s) = spec {
-        for (key, value) in [
-            ("beta", s.beta),
-            ("gamma", s.gamma),
-            ("alpha", s.alpha),
-            ("rho_inf", s.rho_inf),
-        ] {
-            if let Some(v) = value {
-                params.push((key, v));
-            }
-        }
-    }
-    if name == "exact" {
-        if let Some((key, _)) = params.first() {
-            bail!("[integrator] `{key}` does not apply to method = \"exact\"");
-        }
-        return Ok((ModalIntegrator::ExactPiecewiseLinear, name, dt));
-    }
-    let method =
-        StructuralMethod::by_name(&name, &params).map_err(|e| anyhow!("[integrator] {e}"))?;
-    Ok((ModalIntegrator::Structural(method), name, dt))
-}
-
-fn loads(spec: &LoadSpec) -> Result<MovingLoads> {
-    let axles = match (spec.force, &spec.axles) {
-        (Some(f), None) => vec![Axle {
-            offset: 0.0,
-            force: f,
-        }],
-        (None, Some(list)) => list
-            .iter()
-            .map(|[offset, force]| Axle {
-                offset: *offset,
-                force: *force,
-            })
-            .collect(),
-        (Some(_), Some(_)) => bail!("[load]: give either `force` or `axles`, not both"),
-        (None, None) => bail!("[load]: missing `force` [N] (or `axles`)"),
-    };
-    MovingLoads::train(axles, spec.speed).map_err(|e| anyhow!("[load] {e}"))
-}
-
-/// A parsed and validated moving-load scenario.
-struct Prepared {
-    bridge: Bridge,
-    loads: MovingLoads,
-    name: String,
-    dt: f64,
-    settings: MovingLoadSettings,
-    points: Vec<f64>,
-}
-
-fn prepare(text: &str) -> Result<Prepared> {
-    let scenario: MovingLoadScenario =
-        toml::from_str(text).map_err(|e| anyhow!("invalid scenario file: {e}"))?;
-    if scenario.kind != "moving_load" {
-        bail!(
-            "`kind` = \"{}\" is not a moving-load scenario",
-            scenario.kind
-        );
-    }
-    let bridge = scenario.bridge.build()?;
-    let loads = loads(&scenario.load)?;
-    let (modal_integrator, name, dt) = integrator(scenario.integrator.as_ref())?;
-    let length = bridge.basis.length();
-    let omega1 = bridge
-        .basis
-        .circular_frequencies()
-        .iter()
-        .copied()
-        .find(|w| *w > 0.0)
-        .unwrap_or(1.0);
-    let output_spec = scenario.output.as_ref();
-    let free = output_spec
-        .and_then(|o| o.free_vibration)
-        .unwrap_or((3.0 * 2.0 * std::f64::consts::PI / omega1).min(5.0));
-    let mut points = vec![0.5 * length];
-    if let Some(extra) = output_spec.and_then(|o| o.points.clone()) {
-        if let Some(x) = extra
-            .iter()
-            .find(|x| !(x.is_finite() && (0.0..=length).contains(*x)))
-        {
-            bail!("[output] `points` contains {x}: points must lie on the span [0, {length}]");
-        }
-        points.extend(extra);
-    }
-    let total_steps = ((loads.exit_time(length) + free) / dt).ceil().max(1.0);
-    let every = match output_spec.and_then(|o| o.every) {
-        Some(0) => bail!("[output] `every` = 0: must be at least 1"),
-        Some(e) => e,
-        None => ((total_steps / 20_000.0).ceil() as usize).max(1),
-    };
-    let settings = MovingLoadSettings {
-        dt,
-        free_vibration_time: free,
-        output_every: every,
-        integrator: modal_integrator,
-    };
-    Ok(Prepared {
-        bridge,
-        loads,
-        name,
-        dt,
-        settings,
-        points,
-    })
-}
-
 /// The files a moving-load run writes (one run's output set).
 const OUTPUT_SET: &[&str] = &["timeseries.csv", "summary.json", "midspan_deflection.png"];
 
-/// Run a moving-load scenario from its text; writes outputs into `out`.
-pub fn run(text: &str, out: &Path, json: bool) -> Result<()> {
-    let Prepared {
+/// Run a validated moving-load scenario; writes outputs into `out`.
+pub fn run(config: MovingLoadConfig, out: &Path, json: bool) -> Result<()> {
+    let MovingLoadConfig {
         bridge,
         loads,
-        name,
-        dt,
+        integrator_name: name,
         settings,
         points,
-    } = prepare(text).map_err(bad_input)?;
+    } = config;
+    let dt = settings.dt;
     let run_out = RunOutput::create(out, OUTPUT_SET)?;
     let start = Instant::now();
     let response = simulate_moving_loads(

@@ -7,17 +7,13 @@ use std::ops::ControlFlow;
 use std::path::Path;
 use std::time::Instant;
 
-use anyhow::{Result, anyhow, bail};
+use anyhow::{Result, anyhow};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use integrate::structural::StructuralMethod;
-use serde::{Deserialize, Serialize};
-use sim::vehicle_bridge::traction::{TractionDrive, TractionMethod, TractionSpec};
-use sim::vehicle_bridge::{
-    ContactGeometry, ContactModel, CouplingSolver, CouplingSpec, GRAVITY, Irregularity, Radau5Spec,
-    Scenario, Simulation, TrackSpectrum, WheelSpec, run,
-};
+use serde::Serialize;
+use sim::config::vehicle_bridge::VehicleBridgeConfig;
+use sim::vehicle_bridge::traction::TractionSpec;
+use sim::vehicle_bridge::{ContactModel, CouplingSolver, Radau5Spec, Scenario, Simulation, run};
 
-use crate::bridge::BridgeSpec;
 use crate::errors::{BadInput, bad_input};
 use crate::interrupt::{self, Interrupted};
 use crate::output::{self, RunOutput};
@@ -25,369 +21,6 @@ use crate::vehicle_bridge_output::{self, OUTPUT_SET, Recorder, Row};
 
 /// The vehicle-bridge default scenario (also the built-in default of `dyncontact run`).
 pub const DEFAULT: &str = include_str!("../../../examples/vehicle_bridge_default.toml");
-
-/// The scenario file.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct VehicleBridgeFile {
-    pub kind: String,
-    pub bridge: BridgeSpec,
-    pub vehicle: VehicleSpec,
-    pub contact: Option<ContactSpec>,
-    pub irregularity: Option<IrregularitySpec>,
-    pub integrator: Option<IntegratorSpec>,
-    pub coupling: Option<CouplingToml>,
-    pub output: Option<OutputSpec>,
-    /// Longitudinal friction (optional; docs/vehicle_bridge.md, "Traction (friction)").
-    pub traction: Option<TractionToml>,
-}
-
-/// `[traction]`: friction coefficient, tangential method and either a prescribed creepage or
-/// a wheel torque [N m] with the wheel's polar inertia [kg m²].
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct TractionToml {
-    pub mu: f64,
-    pub method: Option<String>,
-    pub creepage: Option<f64>,
-    pub torque: Option<f64>,
-    pub wheel_inertia: Option<f64>,
-    pub fastsim_elements: Option<usize>,
-}
-
-/// The `[traction]` section of a scenario file (`None` when absent: no friction). Values are
-/// range-checked by [`TractionSpec::validate`] with errors naming the key.
-pub fn parse_traction(text: &str) -> Result<Option<TractionSpec>> {
-    let file: VehicleBridgeFile =
-        toml::from_str(text).map_err(|e| anyhow!("invalid vehicle_bridge scenario: {e}"))?;
-    let Some(t) = file.traction else {
-        return Ok(None);
-    };
-    let name = t.method.as_deref().unwrap_or("fastsim");
-    let method = TractionMethod::by_name(name).ok_or_else(|| {
-        anyhow!("[traction] `method` = \"{name}\": expected exact, fastsim or linear")
-    })?;
-    let drive = match (t.creepage, t.torque, t.wheel_inertia) {
-        (Some(xi), None, None) => TractionDrive::Creepage(xi),
-        (None, Some(torque), Some(inertia)) => TractionDrive::Torque { torque, inertia },
-        (None, Some(_), None) => bail!("[traction]: `torque` needs `wheel_inertia` [kg m²]"),
-        (None, None, Some(_)) => bail!("[traction]: `wheel_inertia` applies with `torque` only"),
-        (None, None, None) => bail!("[traction]: give exactly one of `creepage` or `torque`"),
-        (Some(_), _, _) => {
-            bail!("[traction]: `creepage` and `torque`/`wheel_inertia` exclude each other")
-        }
-    };
-    let spec = TractionSpec {
-        mu: t.mu,
-        method,
-        drive,
-        fastsim_elements: t.fastsim_elements.unwrap_or(40),
-    };
-    spec.validate().map_err(|e| anyhow!("[traction]: {e}"))?;
-    Ok(Some(spec))
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct VehicleSpec {
-    pub speed: f64,
-    pub wheels: Vec<WheelToml>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct WheelToml {
-    pub position: Option<f64>,
-    pub wheel_mass: f64,
-    pub body_mass: Option<f64>,
-    pub suspension_stiffness: Option<f64>,
-    pub suspension_damping: Option<f64>,
-    pub static_load: Option<f64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ContactSpec {
-    pub model: Option<String>,
-    pub wheel_radius: Option<f64>,
-    pub rail_profile_radius: Option<f64>,
-    #[serde(rename = "E")]
-    pub e: Option<f64>,
-    pub nu: Option<f64>,
-    pub grid: Option<usize>,
-    pub bem_tol: Option<f64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct IrregularitySpec {
-    pub kind: String,
-    pub position: Option<f64>,
-    pub length: Option<f64>,
-    pub depth: Option<f64>,
-    pub height: Option<f64>,
-    pub amplitude: Option<f64>,
-    pub wavelength: Option<f64>,
-    pub start: Option<f64>,
-    pub end: Option<f64>,
-    pub spectrum: Option<String>,
-    pub lambda_min: Option<f64>,
-    pub lambda_max: Option<f64>,
-    pub components: Option<usize>,
-    pub seed: Option<u64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct IntegratorSpec {
-    pub method: Option<String>,
-    pub dt: Option<f64>,
-    pub beta: Option<f64>,
-    pub gamma: Option<f64>,
-    pub alpha: Option<f64>,
-    pub rho_inf: Option<f64>,
-    pub duration: Option<f64>,
-    /// Radau5 tolerances (only with `method = "radau5"`).
-    pub rtol: Option<f64>,
-    pub atol: Option<f64>,
-}
-
-/// `[integrator] method = "radau5"`: the Radau5 tolerances (`rtol`, `atol`; defaults of
-/// [`Radau5Spec`]), or `None` for a structural method. `rtol`/`atol` with another method are
-/// an error naming the key.
-pub fn parse_radau5(text: &str) -> Result<Option<Radau5Spec>> {
-    let file: VehicleBridgeFile =
-        toml::from_str(text).map_err(|e| anyhow!("invalid vehicle_bridge scenario: {e}"))?;
-    let Some(i) = file.integrator else {
-        return Ok(None);
-    };
-    let radau = i
-        .method
-        .as_deref()
-        .is_some_and(|m| m.trim().eq_ignore_ascii_case("radau5"));
-    if !radau {
-        for (key, v) in [("rtol", i.rtol), ("atol", i.atol)] {
-            if v.is_some() {
-                bail!("[integrator] `{key}` is only used by method = \"radau5\"");
-            }
-        }
-        return Ok(None);
-    }
-    let d = Radau5Spec::default();
-    Ok(Some(Radau5Spec {
-        rtol: i.rtol.unwrap_or(d.rtol),
-        atol: i.atol.unwrap_or(d.atol),
-    }))
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct CouplingToml {
-    pub solver: Option<String>,
-    pub tol: Option<f64>,
-    pub max_iter: Option<usize>,
-    pub max_halvings: Option<usize>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct OutputSpec {
-    /// Record every n-th step.
-    pub every: Option<usize>,
-    /// Output point of the bridge response \[m\] (default midspan).
-    pub point: Option<f64>,
-    /// Number of pressure snapshots along the passage.
-    pub snapshots: Option<usize>,
-}
-
-/// Parses and validates a scenario file into a [`Scenario`].
-pub fn parse(text: &str) -> Result<(Scenario, usize, usize)> {
-    let file: VehicleBridgeFile =
-        toml::from_str(text).map_err(|e| anyhow!("invalid vehicle_bridge scenario: {e}"))?;
-    if file.kind != "vehicle_bridge" {
-        bail!("`kind` = \"{}\": expected \"vehicle_bridge\"", file.kind);
-    }
-    let bridge = file.bridge.build()?;
-    let length = bridge.basis.length();
-    if file.vehicle.wheels.is_empty() {
-        bail!("[vehicle]: at least one [[vehicle.wheels]] table is needed");
-    }
-    let wheels: Vec<WheelSpec> = file
-        .vehicle
-        .wheels
-        .iter()
-        .map(|w| WheelSpec {
-            position: w.position.unwrap_or(0.0),
-            wheel_mass: w.wheel_mass,
-            body_mass: w.body_mass.unwrap_or(0.0),
-            suspension_stiffness: w.suspension_stiffness.unwrap_or(0.0),
-            suspension_damping: w.suspension_damping.unwrap_or(0.0),
-            static_load: w.static_load.unwrap_or(0.0),
-        })
-        .collect();
-
-    let c = file.contact.as_ref();
-    let geometry = ContactGeometry {
-        wheel_radius: c.and_then(|c| c.wheel_radius).unwrap_or(0.46),
-        rail_profile_radius: c.and_then(|c| c.rail_profile_radius).unwrap_or(0.3),
-        youngs_modulus: c.and_then(|c| c.e).unwrap_or(210e9),
-        poisson_ratio: c.and_then(|c| c.nu).unwrap_or(0.3),
-    };
-    let contact = match c.and_then(|c| c.model.as_deref()).unwrap_or("rigid") {
-        "rigid" => ContactModel::Rigid,
-        "hertz" => ContactModel::Hertz,
-        "bem" => ContactModel::Bem {
-            elements: c.and_then(|c| c.grid).unwrap_or(32),
-            tol: c.and_then(|c| c.bem_tol).unwrap_or(1e-8),
-        },
-        other => bail!("[contact] `model` = \"{other}\": expected rigid, hertz or bem"),
-    };
-    if let Some(c) = c
-        && !matches!(contact, ContactModel::Bem { .. })
-        && (c.grid.is_some() || c.bem_tol.is_some())
-    {
-        bail!("[contact]: `grid` and `bem_tol` apply to model = \"bem\" only");
-    }
-
-    let irregularity = match &file.irregularity {
-        None => Irregularity::None,
-        Some(spec) => irregularity(spec, geometry.wheel_radius)?,
-    };
-
-    let integ = file.integrator.as_ref();
-    let method_name = integ.and_then(|i| i.method.as_deref()).unwrap_or("newmark");
-    let mut params: Vec<(&str, f64)> = Vec::new();
-    if let Some(i) = integ {
-        for (k, v) in [
-            ("beta", i.beta),
-            ("gamma", i.gamma),
-            ("alpha", i.alpha),
-            ("rho_inf", i.rho_inf),
-        ] {
-            if let Some(v) = v {
-                params.push((k, v));
-            }
-        }
-    }
-    // radau5 replaces the structural method (parse_radau5, Simulation::set_radau5); the
-    // scenario keeps a placeholder that is not used.
-    let method = if method_name.trim().eq_ignore_ascii_case("radau5") {
-        StructuralMethod::average_acceleration()
-    } else {
-        StructuralMethod::by_name(method_name, &params)
-            .map_err(|e| anyhow!("[integrator] `method` = \"{method_name}\": {e}"))?
-    };
-    if contact == ContactModel::Rigid
-        && !method_name.trim().eq_ignore_ascii_case("radau5")
-        && matches!(method, StructuralMethod::Newmark { gamma, .. } if gamma <= 0.5)
-    {
-        eprintln!(
-            "warning: rigid contact with the undamped Newmark rule (gamma = 0.5): the contact multiplier can ring and grow at a slope kink (a wheel entering a deflected span); [integrator] method = \"generalized_alpha\" or \"hht\" damps it (docs/vehicle_bridge.md)"
-        );
-    }
-    let dt = integ.and_then(|i| i.dt).unwrap_or(1e-4);
-    let duration = integ.and_then(|i| i.duration);
-
-    let cp = file.coupling.as_ref();
-    let solver_name = cp
-        .and_then(|c| c.solver.as_deref())
-        .unwrap_or("quasi_newton");
-    let solver = CouplingSolver::by_name(solver_name).ok_or_else(|| {
-        anyhow!("[coupling] `solver` = \"{solver_name}\": expected picard, quasi_newton or newton")
-    })?;
-    let defaults = CouplingSpec::default();
-    let coupling = CouplingSpec {
-        solver,
-        tol: cp.and_then(|c| c.tol).unwrap_or(defaults.tol),
-        max_iter: cp.and_then(|c| c.max_iter).unwrap_or(defaults.max_iter),
-        max_halvings: cp
-            .and_then(|c| c.max_halvings)
-            .unwrap_or(defaults.max_halvings),
-    };
-    let out = file.output.as_ref();
-    let every = out.and_then(|o| o.every).unwrap_or(1);
-    if every == 0 {
-        bail!("[output] `every` must be at least 1");
-    }
-    let snapshots = out.and_then(|o| o.snapshots).unwrap_or(6);
-    let scenario = Scenario {
-        output_point: out.and_then(|o| o.point).unwrap_or(0.5 * length),
-        bridge: bridge.basis,
-        damping: bridge.damping,
-        wheels,
-        speed: file.vehicle.speed,
-        contact,
-        geometry,
-        irregularity,
-        method,
-        dt,
-        duration,
-        coupling,
-        gravity: GRAVITY,
-    };
-    Ok((scenario, every, snapshots))
-}
-
-fn need(v: Option<f64>, key: &str, kind: &str) -> Result<f64> {
-    v.ok_or_else(|| anyhow!("[irregularity] kind = \"{kind}\" needs `{key}`"))
-}
-
-fn irregularity(spec: &IrregularitySpec, wheel_radius: f64) -> Result<Irregularity> {
-    let k = spec.kind.as_str();
-    let irr = match k {
-        "none" => Irregularity::None,
-        "dip" | "dipped_joint" => Irregularity::Dip {
-            position: need(spec.position, "position", k)?,
-            length: need(spec.length, "length", k)?,
-            depth: need(spec.depth, "depth", k)?,
-        },
-        "ramp" => Irregularity::Ramp {
-            position: need(spec.position, "position", k)?,
-            length: need(spec.length, "length", k)?,
-            height: need(spec.height, "height", k)?,
-        },
-        "wheel_flat" => {
-            let length = need(spec.length, "length", k)?;
-            // A fresh flat of chord ℓ has depth ℓ²/(8R) (references.md §D2.5) unless given.
-            let depth = spec.depth.unwrap_or(length * length / (8.0 * wheel_radius));
-            Irregularity::WheelFlat {
-                position: spec.position.unwrap_or(0.0),
-                length,
-                depth,
-                wheel_radius,
-            }
-        }
-        "corrugation" => Irregularity::Corrugation {
-            amplitude: need(spec.amplitude, "amplitude", k)?,
-            wavelength: need(spec.wavelength, "wavelength", k)?,
-            start: spec.start.unwrap_or(f64::NEG_INFINITY).max(-1e300),
-            end: spec.end.unwrap_or(f64::INFINITY).min(1e300),
-        },
-        "random" => {
-            let name = spec
-                .spectrum
-                .as_deref()
-                .ok_or_else(|| anyhow!("[irregularity] kind = \"random\" needs `spectrum`"))?;
-            let spectrum = TrackSpectrum::by_name(name).ok_or_else(|| {
-                anyhow!(
-                    "[irregularity] `spectrum` = \"{name}\": expected fra1 … fra6, german_low or german_high"
-                )
-            })?;
-            Irregularity::random(
-                spectrum,
-                spec.lambda_min.unwrap_or(1.0),
-                spec.lambda_max.unwrap_or(50.0),
-                spec.components.unwrap_or(500),
-                spec.seed.unwrap_or(1),
-            )?
-        }
-        other => bail!(
-            "[irregularity] `kind` = \"{other}\": expected none, dip, ramp, wheel_flat, corrugation or random"
-        ),
-    };
-    irr.validate()?;
-    Ok(irr)
-}
 
 /// The `traction` object of summary.json.
 #[derive(Serialize)]
@@ -476,8 +109,8 @@ pub fn simulate(scenario: Scenario, every: usize, snapshots: usize) -> Result<Ou
     simulate_full(scenario, None, None, every, snapshots, None)
 }
 
-/// [`simulate`] with longitudinal friction (`traction`, from [`parse_traction`]), an optional
-/// Radau5 integration (from [`parse_radau5`]) and the recorded rows streamed to `csv`. Stops
+/// [`simulate`] with longitudinal friction (`traction`), an optional
+/// Radau5 integration and the recorded rows streamed to `csv`. Stops
 /// early, with `completed = false`, on an interrupt (Ctrl-C) or a failed step.
 pub fn simulate_full(
     scenario: Scenario,
@@ -681,15 +314,23 @@ pub fn print_summary(s: &Summary) {
 }
 
 /// `dyncontact run` for `kind = "vehicle_bridge"`.
-pub fn run(text: &str, out: &Path, json: bool) -> Result<()> {
-    let (scenario, every, snapshots) = parse(text).map_err(bad_input)?;
-    let traction = parse_traction(text).map_err(bad_input)?;
-    let radau = parse_radau5(text).map_err(bad_input)?;
+pub fn run(config: VehicleBridgeConfig, out: &Path, json: bool) -> Result<()> {
+    let VehicleBridgeConfig {
+        scenario,
+        traction,
+        radau5,
+        every,
+        snapshots,
+        warnings,
+    } = config;
+    for w in warnings {
+        eprintln!("warning: {w}");
+    }
     let run_out = RunOutput::create(out, OUTPUT_SET)?;
     let outcome = simulate_full(
         scenario,
         traction,
-        radau,
+        radau5,
         every,
         snapshots,
         Some(&run_out.path("timeseries.csv")),
@@ -747,7 +388,7 @@ pub fn bench(default_scenario: &str) -> Result<()> {
         "failed"
     );
     for solver in ["picard", "quasi_newton"] {
-        let (mut scenario, _, _) = parse(default_scenario)?;
+        let mut scenario = sim::config::vehicle_bridge::parse(default_scenario)?.scenario;
         scenario.contact = match scenario.contact {
             ContactModel::Bem { tol, .. } => ContactModel::Bem { elements: 32, tol },
             _ => ContactModel::Bem {

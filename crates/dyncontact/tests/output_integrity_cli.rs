@@ -114,8 +114,8 @@ fn exit_codes_are_documented_and_consistent() {
 #[test]
 fn unusable_out_fails_before_the_run() {
     let dir = tempfile::tempdir().unwrap();
-    // A run of minutes if it started (0.01 m/s over 25 m).
-    let long = write(dir.path(), "long.toml", &crawl(0.01, 1e-4));
+    // A run of minutes if it started (0.05 m/s over 25 m: 5e6 steps, under the 1e7-row cap).
+    let long = write(dir.path(), "long.toml", &crawl(0.05, 1e-4));
     let file = dir.path().join("a_file");
     std::fs::write(&file, "x").unwrap();
     let missing = dir.path().join("no/such/parent");
@@ -254,8 +254,9 @@ fn sigint_stops_the_run_and_marks_the_outputs_partial() {
     std::fs::create_dir(&out).unwrap();
     // An old complete set must not survive beside the partial one.
     std::fs::write(out.join("timeseries.csv"), "t\n1\n").unwrap();
-    // 2500 s of simulated time at dt = 1e-4: hours if it were not interrupted.
-    let long = write(dir.path(), "long.toml", &crawl(0.01, 1e-4));
+    // 500 s of simulated time at dt = 1e-4 (5e6 recorded rows, under the 1e7-row cap): many
+    // minutes if it were not interrupted.
+    let long = write(dir.path(), "long.toml", &crawl(0.05, 1e-4));
     let child = Command::new(env!("CARGO_BIN_EXE_dyncontact"))
         .args(["run", &long, "--out", out.to_str().unwrap(), "--json"])
         .stdout(Stdio::piped())

@@ -1,8 +1,10 @@
 //! The `[bridge]` block of scenario files, shared by `modes`, `kind = "moving_load"` and
 //! `kind = "vehicle_bridge"`: an analytic uniform beam, or a finite-element beam when
-//! `elements` is given. SI units.
+//! `elements` is given. SI units. Ranges: [`super::checks::ranges`]; `modes` ≤
+//! [`MAX_MODES`], `elements` ≤ [`MAX_FE_ELEMENTS`] (checked before the eigen-solve).
 
-use anyhow::{Result, anyhow, bail};
+use super::ConfigError;
+use super::checks::{self, MAX_FE_ELEMENTS, MAX_MODES, ranges};
 use beam::{
     AnalyticBeam, FeBeam, ModalBasis, ModalDamping, PointMass, PointSupport, Section, Support,
     SupportKind, UniformBeam,
@@ -99,10 +101,34 @@ pub struct Bridge {
     pub description: String,
 }
 
-fn bending_stiffness(ei: Option<f64>, e: Option<f64>, i: Option<f64>, at: &str) -> Result<f64> {
+/// EI from `EI` or `E` × `I`; `at` is the section as printed, `path` the key prefix
+/// (`bridge` or `bridge.sections[k]`). Negative or zero values are left to
+/// [`UniformBeam::new`]/[`FeBeam::new`] (their messages name `bending_stiffness`); the
+/// range check refuses the absurd ones.
+fn bending_stiffness(
+    ei: Option<f64>,
+    e: Option<f64>,
+    i: Option<f64>,
+    at: &str,
+    path: &str,
+) -> Result<f64, ConfigError> {
+    let positive_out_of_range = |key: &str, v: f64, range: checks::Range| {
+        if v > 0.0 || !v.is_finite() {
+            range.check(&format!("{path}.{key}"), v).map(|_| ())
+        } else {
+            Ok(())
+        }
+    };
     match (ei, e, i) {
-        (Some(ei), None, None) => Ok(ei),
-        (None, Some(e), Some(i)) => Ok(e * i),
+        (Some(ei), None, None) => {
+            positive_out_of_range("EI", ei, ranges::BENDING_STIFFNESS)?;
+            Ok(ei)
+        }
+        (None, Some(e), Some(i)) => {
+            positive_out_of_range("E", e, ranges::MODULUS)?;
+            positive_out_of_range("I", i, ranges::SECOND_MOMENT)?;
+            Ok(e * i)
+        }
         (Some(_), _, _) => bail!("{at}: give either `EI` or `E` and `I`, not both"),
         (None, Some(_), None) => bail!("{at}: `E` needs `I`"),
         (None, None, Some(_)) => bail!("{at}: `I` needs `E`"),
@@ -110,7 +136,7 @@ fn bending_stiffness(ei: Option<f64>, e: Option<f64>, i: Option<f64>, at: &str) 
     }
 }
 
-fn support_by_name(name: &str) -> Result<Support> {
+fn support_by_name(name: &str) -> Result<Support, ConfigError> {
     Ok(match name {
         "simply_supported" => Support::SimplySupported,
         "clamped_clamped" => Support::ClampedClamped,
@@ -123,7 +149,7 @@ fn support_by_name(name: &str) -> Result<Support> {
     })
 }
 
-fn damping(spec: &BridgeSpec, n_modes: usize) -> Result<ModalDamping> {
+fn damping(spec: &BridgeSpec, n_modes: usize) -> Result<ModalDamping, ConfigError> {
     let given = [
         spec.damping_ratio.is_some(),
         spec.damping_ratios.is_some(),
@@ -136,6 +162,7 @@ fn damping(spec: &BridgeSpec, n_modes: usize) -> Result<ModalDamping> {
         if !z.is_finite() || z < 0.0 {
             bail!("[bridge] `damping_ratio` = {z}: must be a non-negative number");
         }
+        ranges::DAMPING_RATIO.check("bridge.damping_ratio", z)?;
         return Ok(if z == 0.0 {
             ModalDamping::Undamped
         } else {
@@ -152,12 +179,17 @@ fn damping(spec: &BridgeSpec, n_modes: usize) -> Result<ModalDamping> {
         if let Some(z) = zs.iter().find(|z| !z.is_finite() || **z < 0.0) {
             bail!("[bridge] `damping_ratios` contains {z}: ratios must be non-negative");
         }
+        for (k, z) in zs.iter().enumerate() {
+            ranges::DAMPING_RATIO.check(&format!("bridge.damping_ratios[{k}]"), *z)?;
+        }
         return Ok(ModalDamping::PerMode(zs.clone()));
     }
     if let Some([a, b]) = spec.rayleigh {
         if !(a.is_finite() && b.is_finite() && a >= 0.0 && b >= 0.0) {
             bail!("[bridge] `rayleigh` = [{a}, {b}]: coefficients must be non-negative");
         }
+        checks::Range::closed(0.0, 1e6, "1/s").check("bridge.rayleigh[0]", a)?;
+        checks::Range::closed(0.0, 1.0, "s").check("bridge.rayleigh[1]", b)?;
         return Ok(ModalDamping::Rayleigh {
             mass_coefficient: a,
             stiffness_coefficient: b,
@@ -167,14 +199,64 @@ fn damping(spec: &BridgeSpec, n_modes: usize) -> Result<ModalDamping> {
 }
 
 impl BridgeSpec {
+    /// Range checks of the scalar keys (positive values out of range; signs and zeros are
+    /// left to the beam constructors, whose messages are kept).
+    fn check_ranges(&self) -> Result<(), ConfigError> {
+        let positive = |key: &str, v: Option<f64>, range: checks::Range| match v {
+            Some(v) if v > 0.0 || !v.is_finite() => range.check(key, v).map(|_| ()),
+            _ => Ok(()),
+        };
+        positive("bridge.length", self.length, ranges::SPAN)?;
+        positive(
+            "bridge.mass_per_length",
+            self.mass_per_length,
+            ranges::MASS_PER_LENGTH,
+        )?;
+        for (k, s) in self.sections.iter().flatten().enumerate() {
+            ranges::SPAN.check(&format!("bridge.sections[{k}].length"), s.length)?;
+            ranges::MASS_PER_LENGTH.check(
+                &format!("bridge.sections[{k}].mass_per_length"),
+                s.mass_per_length,
+            )?;
+        }
+        for (key, list) in [
+            ("bridge.supports_at", &self.supports_at),
+            ("bridge.clamped_at", &self.clamped_at),
+        ] {
+            for (k, x) in list.iter().flatten().enumerate() {
+                ranges::POSITION.check(&format!("{key}[{k}]"), *x)?;
+            }
+        }
+        for (k, b) in self.bearings.iter().flatten().enumerate() {
+            ranges::POSITION.check(&format!("bridge.bearings[{k}].x"), b.x)?;
+            ranges::STIFFNESS.check(
+                &format!("bridge.bearings[{k}].translational"),
+                b.translational,
+            )?;
+            ranges::ROTATIONAL_STIFFNESS
+                .check(&format!("bridge.bearings[{k}].rotational"), b.rotational)?;
+        }
+        for (k, m) in self.point_masses.iter().flatten().enumerate() {
+            ranges::POSITION.check(&format!("bridge.point_masses[{k}].x"), m.x)?;
+            ranges::MASS_OR_ZERO.check(&format!("bridge.point_masses[{k}].mass"), m.mass)?;
+            ranges::INERTIA.check(
+                &format!("bridge.point_masses[{k}].rotary_inertia"),
+                m.rotary_inertia,
+            )?;
+        }
+        Ok(())
+    }
+
     /// Build the modal model.
-    pub fn build(&self) -> Result<Bridge> {
+    pub fn build(&self) -> Result<Bridge, ConfigError> {
         let n_modes = self
             .modes
-            .ok_or_else(|| anyhow!("[bridge]: missing `modes` (number of modes)"))?;
+            .ok_or_else(|| invalid!("[bridge]: missing `modes` (number of modes)"))?;
         if n_modes == 0 {
             bail!("[bridge] `modes` = 0: at least one mode is needed");
         }
+        checks::count("bridge.modes", n_modes, 1, MAX_MODES)?;
+        self.check_ranges()?;
         let damping = damping(self, n_modes)?;
         if self.elements.is_some() {
             self.build_fe(n_modes, damping)
@@ -183,7 +265,7 @@ impl BridgeSpec {
         }
     }
 
-    fn build_analytic(&self, n_modes: usize, damping: ModalDamping) -> Result<Bridge> {
+    fn build_analytic(&self, n_modes: usize, damping: ModalDamping) -> Result<Bridge, ConfigError> {
         for (key, set) in [
             ("supports_at", self.supports_at.is_some()),
             ("clamped_at", self.clamped_at.is_some()),
@@ -199,15 +281,15 @@ impl BridgeSpec {
         }
         let length = self
             .length
-            .ok_or_else(|| anyhow!("[bridge]: missing `length`"))?;
-        let ei = bending_stiffness(self.ei, self.e, self.i, "[bridge]")?;
+            .ok_or_else(|| invalid!("[bridge]: missing `length`"))?;
+        let ei = bending_stiffness(self.ei, self.e, self.i, "[bridge]", "bridge")?;
         let mass = self
             .mass_per_length
-            .ok_or_else(|| anyhow!("[bridge]: missing `mass_per_length`"))?;
+            .ok_or_else(|| invalid!("[bridge]: missing `mass_per_length`"))?;
         let support = support_by_name(self.supports.as_deref().unwrap_or("simply_supported"))?;
-        let uniform = UniformBeam::new(length, ei, mass).map_err(|e| anyhow!("[bridge] {e}"))?;
+        let uniform = UniformBeam::new(length, ei, mass).map_err(|e| invalid!("[bridge] {e}"))?;
         let basis =
-            AnalyticBeam::new(support, uniform, n_modes).map_err(|e| anyhow!("[bridge] {e}"))?;
+            AnalyticBeam::new(support, uniform, n_modes).map_err(|e| invalid!("[bridge] {e}"))?;
         let roots = basis.roots().to_vec();
         Ok(Bridge {
             basis: Box::new(basis),
@@ -222,13 +304,21 @@ impl BridgeSpec {
         })
     }
 
-    fn build_fe(&self, n_modes: usize, damping: ModalDamping) -> Result<Bridge> {
+    fn build_fe(&self, n_modes: usize, damping: ModalDamping) -> Result<Bridge, ConfigError> {
         if self.supports.is_some() {
             bail!(
                 "[bridge] `supports` is for the analytic model; the FE model uses `supports_at`, `clamped_at`, `bearings`"
             );
         }
         let elements = self.elements.unwrap_or(0);
+        checks::count("bridge.elements", elements, 1, MAX_FE_ELEMENTS)?;
+        // The dense eigen-solve: about six n × n matrices of the n = 2 (elements + 1) DOFs.
+        let dofs = 2.0 * (elements as f64 + 1.0);
+        checks::memory(
+            &format!("`bridge.elements` = {elements} (dense eigen-solve)"),
+            dofs * dofs,
+            6.0 * 8.0,
+        )?;
         let sections: Vec<Section> = match &self.sections {
             Some(list) => {
                 if self.ei.is_some()
@@ -250,20 +340,23 @@ impl BridgeSpec {
                                 s.e,
                                 s.i,
                                 &format!("[[bridge.sections]] #{}", k + 1),
+                                &format!("bridge.sections[{k}]"),
                             )?,
                             mass_per_length: s.mass_per_length,
                         })
                     })
-                    .collect::<Result<_>>()?
+                    .collect::<Result<_, ConfigError>>()?
             }
             None => vec![Section {
                 length: self
                     .length
-                    .ok_or_else(|| anyhow!("[bridge]: missing `length`"))?,
-                bending_stiffness: bending_stiffness(self.ei, self.e, self.i, "[bridge]")?,
+                    .ok_or_else(|| invalid!("[bridge]: missing `length`"))?,
+                bending_stiffness: bending_stiffness(
+                    self.ei, self.e, self.i, "[bridge]", "bridge",
+                )?,
                 mass_per_length: self
                     .mass_per_length
-                    .ok_or_else(|| anyhow!("[bridge]: missing `mass_per_length`"))?,
+                    .ok_or_else(|| invalid!("[bridge]: missing `mass_per_length`"))?,
             }],
         };
         let total: f64 = sections.iter().map(|s| s.length).sum();
@@ -306,13 +399,13 @@ impl BridgeSpec {
             })
             .collect();
         let fe = FeBeam::new(&sections, &supports, &masses, elements)
-            .map_err(|e| anyhow!("[bridge] {e}"))?;
+            .map_err(|e| invalid!("[bridge] {e}"))?;
         let modes = fe
             .modes(n_modes)
-            .map_err(|e| anyhow!("[bridge] FE eigen-solve: {e}"))?;
+            .map_err(|e| invalid!("[bridge] FE eigen-solve: {e}"))?;
         let first = sections[0];
         let reference = UniformBeam::new(total, first.bending_stiffness, first.mass_per_length)
-            .map_err(|e| anyhow!("[bridge] {e}"))?;
+            .map_err(|e| invalid!("[bridge] {e}"))?;
         Ok(Bridge {
             basis: Box::new(modes),
             damping,
@@ -343,13 +436,31 @@ impl Bridge {
     }
 }
 
-/// Parse the `[bridge]` table of a scenario.
-pub fn from_table(table: &toml::Table) -> Result<BridgeSpec> {
-    let value = table
-        .get("bridge")
-        .ok_or_else(|| anyhow!("missing [bridge] section"))?;
-    value
-        .clone()
+/// A file read by `dyncontact modes`: a `[bridge]` section, alone or in a scenario.
+#[derive(Deserialize)]
+struct BridgeFile {
+    kind: Option<String>,
+    bridge: Option<toml::Value>,
+    #[serde(flatten)]
+    other: toml::Table,
+}
+
+/// The bridge of a file's `[bridge]` section. Other top-level keys are accepted only in a
+/// scenario file (one with `kind`), where they belong to the scenario.
+pub fn parse_bridge_file(text: &str) -> Result<Bridge, ConfigError> {
+    let file: BridgeFile = toml::from_str(text)
+        .map_err(|e| ConfigError::Schema(format!("invalid bridge file: {e}")))?;
+    if file.kind.is_none()
+        && let Some(other) = file.other.keys().next()
+    {
+        bail!(
+            "unknown key `{other}`: a bridge file holds only a [bridge] section (or is a scenario with `kind`)"
+        );
+    }
+    let spec: BridgeSpec = file
+        .bridge
+        .ok_or_else(|| invalid!("missing [bridge] section"))?
         .try_into()
-        .map_err(|e: toml::de::Error| anyhow!("[bridge]: {}", e.message()))
+        .map_err(|e: toml::de::Error| ConfigError::Schema(format!("[bridge]: {}", e.message())))?;
+    spec.build()
 }

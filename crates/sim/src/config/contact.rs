@@ -1,0 +1,603 @@
+//! A quasi-static contact case (`dyncontact contact`, `creep-curve`, `kind = "contact"`):
+//! two bodies, a gap, a grid, a load, and optionally friction and kinematics (tangential
+//! contact, docs/tangential.md). Every key is in SI units; unknown keys are errors. The
+//! schema is in the README.
+
+use std::path::{Path, PathBuf};
+
+use halfspace::{
+    Body, Creepages, GapShape, Grid, Material, NormalLoad, RollingLoad, ShiftLoad, SolverOptions,
+    auto_grid, curvatures_from_radii,
+};
+use serde::Deserialize;
+
+use super::ConfigError;
+use super::checks::{self, MAX_ITERATIONS, ranges};
+
+/// Largest `grid.n` of the automatic grid (elements per direction).
+pub const MAX_AUTO_GRID_ELEMENTS: usize = 2048;
+
+/// The case file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactCase {
+    /// Optional; `run` dispatches on it.
+    #[serde(default)]
+    pub kind: Option<String>,
+    pub body1: BodySpec,
+    pub body2: BodySpec,
+    pub gap: GapSpec,
+    pub grid: Option<GridSpec>,
+    pub load: LoadSpec,
+    pub solver: Option<SolverSpec>,
+    /// Coulomb friction (needed by \[kinematics\]).
+    pub friction: Option<FrictionSpec>,
+    /// Tangential problem: rolling or shift (see docs/tangential.md).
+    pub kinematics: Option<KinematicsSpec>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrictionSpec {
+    pub mu: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct KinematicsSpec {
+    /// "rolling" (steady rolling) or "shift" (Cattaneo–Mindlin).
+    pub problem: Option<String>,
+    pub creepage_x: Option<f64>,
+    pub creepage_y: Option<f64>,
+    /// Spin [1/m].
+    pub spin: Option<f64>,
+    /// Rigid shift \[m\] (shift problem).
+    pub shift_x: Option<f64>,
+    pub shift_y: Option<f64>,
+    /// Prescribed tangential forces \[N\].
+    pub force_x: Option<f64>,
+    pub force_y: Option<f64>,
+    /// "exact" (default), "fastsim" or "linear".
+    pub method: Option<String>,
+}
+
+/// How the tangential problem is solved (the library's one method enum).
+pub use halfspace::TangentialMethod;
+
+/// The tangential problem of a case.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum TangentialTask {
+    Rolling(RollingLoad),
+    Shift(ShiftLoad),
+}
+
+/// A validated \[friction\] + \[kinematics\] pair.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TangentialCase {
+    pub mu: f64,
+    pub task: TangentialTask,
+    pub method: TangentialMethod,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodySpec {
+    #[serde(rename = "E")]
+    pub e: Option<f64>,
+    pub nu: Option<f64>,
+    #[serde(default)]
+    pub rigid: bool,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GapSpec {
+    pub kind: String,
+    #[serde(rename = "A")]
+    pub a: Option<f64>,
+    #[serde(rename = "B")]
+    pub b: Option<f64>,
+    #[serde(rename = "R1x")]
+    pub r1x: Option<f64>,
+    #[serde(rename = "R1y")]
+    pub r1y: Option<f64>,
+    #[serde(rename = "R2x")]
+    pub r2x: Option<f64>,
+    #[serde(rename = "R2y")]
+    pub r2y: Option<f64>,
+    pub radius: Option<f64>,
+    pub length: Option<f64>,
+    pub edge_radius: Option<f64>,
+    pub file: Option<PathBuf>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GridSpec {
+    pub nx: Option<usize>,
+    pub ny: Option<usize>,
+    pub dx: Option<f64>,
+    pub dy: Option<f64>,
+    pub x0: Option<f64>,
+    pub y0: Option<f64>,
+    /// Elements per direction of the automatic grid (when nx, ny, dx, dy are absent).
+    pub n: Option<usize>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadSpec {
+    pub force: Option<f64>,
+    pub approach: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSpec {
+    pub tol: Option<f64>,
+    pub max_iter: Option<usize>,
+}
+
+/// A case ready to solve.
+pub struct PreparedCase {
+    pub material: Material,
+    pub shape: GapShape,
+    pub grid: Grid,
+    pub gap: Vec<f64>,
+    pub load: NormalLoad,
+    pub options: SolverOptions,
+    /// Friction coefficient, when \[friction\] is given.
+    pub mu: Option<f64>,
+    /// The tangential problem, when \[kinematics\] is given.
+    pub tangential: Option<TangentialCase>,
+}
+
+fn finite_key(section: &str, key: &str, value: Option<f64>) -> Result<Option<f64>, ConfigError> {
+    match value {
+        Some(v) if !v.is_finite() => bail!("[{section}] `{key}` = {v}: must be a finite number"),
+        other => Ok(other),
+    }
+}
+
+/// Validate \[friction\] and \[kinematics\].
+fn tangential_case(
+    friction: Option<&FrictionSpec>,
+    kin: Option<&KinematicsSpec>,
+) -> Result<(Option<f64>, Option<TangentialCase>), ConfigError> {
+    let mu = match friction {
+        None => None,
+        Some(f) => {
+            let mu = f.mu.ok_or_else(|| {
+                invalid!("[friction]: missing `mu` (Coulomb friction coefficient)")
+            })?;
+            if !mu.is_finite() || mu <= 0.0 {
+                bail!("[friction] `mu` = {mu}: must be a positive number");
+            }
+            ranges::FRICTION.check("friction.mu", mu)?;
+            Some(mu)
+        }
+    };
+    let Some(k) = kin else {
+        return Ok((mu, None));
+    };
+    let mu = mu.ok_or_else(|| invalid!("[kinematics] needs a [friction] section with `mu`"))?;
+    let cx = finite_key("kinematics", "creepage_x", k.creepage_x)?;
+    let cy = finite_key("kinematics", "creepage_y", k.creepage_y)?;
+    let spin = finite_key("kinematics", "spin", k.spin)?;
+    let sx = finite_key("kinematics", "shift_x", k.shift_x)?;
+    let sy = finite_key("kinematics", "shift_y", k.shift_y)?;
+    let fx = finite_key("kinematics", "force_x", k.force_x)?;
+    let fy = finite_key("kinematics", "force_y", k.force_y)?;
+    ranges::CREEPAGE.check_opt("kinematics.creepage_x", cx)?;
+    ranges::CREEPAGE.check_opt("kinematics.creepage_y", cy)?;
+    ranges::SPIN.check_opt("kinematics.spin", spin)?;
+    ranges::SMALL_DISPLACEMENT.check_opt("kinematics.shift_x", sx)?;
+    ranges::SMALL_DISPLACEMENT.check_opt("kinematics.shift_y", sy)?;
+    ranges::FORCE.check_opt("kinematics.force_x", fx)?;
+    ranges::FORCE.check_opt("kinematics.force_y", fy)?;
+    let has_creep = cx.is_some() || cy.is_some();
+    let has_shift = sx.is_some() || sy.is_some();
+    let has_force = fx.is_some() || fy.is_some();
+    let problem = match k.problem.as_deref() {
+        Some("rolling") => "rolling",
+        Some("shift") => "shift",
+        Some(other) => {
+            bail!("[kinematics] `problem` = \"{other}\": expected \"rolling\" or \"shift\"")
+        }
+        None if has_shift => "shift",
+        None => "rolling",
+    };
+    let method = match k.method.as_deref() {
+        None | Some("exact") => TangentialMethod::Exact,
+        Some("fastsim") => TangentialMethod::Fastsim,
+        Some("linear") => TangentialMethod::Linear,
+        Some(other) => bail!(
+            "[kinematics] `method` = \"{other}\": expected \"exact\", \"fastsim\" or \"linear\""
+        ),
+    };
+    let task = if problem == "rolling" {
+        for (key, set) in [("shift_x", sx.is_some()), ("shift_y", sy.is_some())] {
+            if set {
+                bail!("[kinematics] key `{key}` is not used by problem = \"rolling\"");
+            }
+        }
+        match (has_creep, has_force) {
+            (true, true) => bail!(
+                "[kinematics]: give either the creepages `creepage_x`, `creepage_y` or the forces `force_x`, `force_y`, not both"
+            ),
+            (false, false) if spin.is_none() => bail!(
+                "[kinematics]: missing `creepage_x`/`creepage_y`/`spin` or `force_x`/`force_y`"
+            ),
+            (false, true) => TangentialTask::Rolling(RollingLoad::Forces {
+                fx: fx.unwrap_or(0.0),
+                fy: fy.unwrap_or(0.0),
+                phi: spin.unwrap_or(0.0),
+            }),
+            _ => TangentialTask::Rolling(RollingLoad::Creepages(Creepages {
+                xi: cx.unwrap_or(0.0),
+                eta: cy.unwrap_or(0.0),
+                phi: spin.unwrap_or(0.0),
+            })),
+        }
+    } else {
+        for (key, set) in [
+            ("creepage_x", cx.is_some()),
+            ("creepage_y", cy.is_some()),
+            ("spin", spin.is_some()),
+        ] {
+            if set {
+                bail!("[kinematics] key `{key}` is not used by problem = \"shift\"");
+            }
+        }
+        match (has_shift, has_force) {
+            (true, true) => bail!(
+                "[kinematics]: give either the shift `shift_x`, `shift_y` or the forces `force_x`, `force_y`, not both"
+            ),
+            (false, false) => {
+                bail!("[kinematics]: missing `shift_x`/`shift_y` or `force_x`/`force_y`")
+            }
+            (true, false) => TangentialTask::Shift(ShiftLoad::Shift {
+                wx: sx.unwrap_or(0.0),
+                wy: sy.unwrap_or(0.0),
+            }),
+            (false, true) => TangentialTask::Shift(ShiftLoad::Forces {
+                fx: fx.unwrap_or(0.0),
+                fy: fy.unwrap_or(0.0),
+            }),
+        }
+    };
+    if method != TangentialMethod::Exact
+        && !matches!(task, TangentialTask::Rolling(RollingLoad::Creepages(_)))
+    {
+        bail!(
+            "[kinematics] `method` = \"{}\" needs problem = \"rolling\" with creepages (forces and shifts need method = \"exact\")",
+            method.name()
+        );
+    }
+    Ok((Some(mu), Some(TangentialCase { mu, task, method })))
+}
+
+/// Parse a case file's text (`base` resolves relative table paths).
+pub fn parse(text: &str, base: &Path) -> Result<PreparedCase, ConfigError> {
+    let case: ContactCase =
+        toml::from_str(text).map_err(|e| ConfigError::Schema(format!("invalid case file: {e}")))?;
+    prepare(case, base)
+}
+
+/// A validated contact case (the `kind = "contact"` scenario of [`super::load`]).
+pub type ContactConfig = PreparedCase;
+
+/// Validate a parsed case file (`base` resolves relative table paths).
+pub fn build(case: ContactCase, base: &Path) -> Result<ContactConfig, ConfigError> {
+    prepare(case, base)
+}
+
+fn body(spec: &BodySpec, section: &str) -> Result<Body, ConfigError> {
+    if spec.rigid {
+        if spec.e.is_some() || spec.nu.is_some() {
+            bail!("[{section}]: a rigid body takes no `E` or `nu`");
+        }
+        return Ok(Body::Rigid);
+    }
+    let e = spec
+        .e
+        .ok_or_else(|| invalid!("[{section}]: missing `E` (or set `rigid = true`)"))?;
+    let nu = spec
+        .nu
+        .ok_or_else(|| invalid!("[{section}]: missing `nu`"))?;
+    Body::elastic(e, nu).map_err(|err| invalid!("[{section}] {err}"))
+}
+
+fn material(case: &ContactCase) -> Result<Material, ConfigError> {
+    let b1 = body(&case.body1, "body1")?;
+    let b2 = body(&case.body2, "body2")?;
+    Material::combine(b1, b2).map_err(|e| invalid!("[body1]/[body2]: {e}"))
+}
+
+fn load(spec: &LoadSpec) -> Result<NormalLoad, ConfigError> {
+    match (spec.force, spec.approach) {
+        (Some(f), None) => {
+            if !f.is_finite() || f <= 0.0 {
+                bail!("[load] `force` = {f}: must be a positive number of newtons");
+            }
+            Ok(NormalLoad::Force(f))
+        }
+        (None, Some(d)) => {
+            if !d.is_finite() {
+                bail!("[load] `approach` = {d}: must be a finite number of metres");
+            }
+            Ok(NormalLoad::Approach(d))
+        }
+        (Some(_), Some(_)) => bail!("[load]: give exactly one of `force` or `approach`, not both"),
+        (None, None) => bail!("[load]: missing load: give `force` [N] or `approach` [m]"),
+    }
+}
+
+/// Reject keys of \[gap\] that its kind does not use.
+fn only_keys(spec: &GapSpec, allowed: &[&str]) -> Result<(), ConfigError> {
+    let present = [
+        ("A", spec.a.is_some()),
+        ("B", spec.b.is_some()),
+        ("R1x", spec.r1x.is_some()),
+        ("R1y", spec.r1y.is_some()),
+        ("R2x", spec.r2x.is_some()),
+        ("R2y", spec.r2y.is_some()),
+        ("radius", spec.radius.is_some()),
+        ("length", spec.length.is_some()),
+        ("edge_radius", spec.edge_radius.is_some()),
+        ("file", spec.file.is_some()),
+    ];
+    for (key, is_set) in present {
+        if is_set && !allowed.contains(&key) {
+            bail!("[gap] key `{key}` is not used by kind = \"{}\"", spec.kind);
+        }
+    }
+    Ok(())
+}
+
+fn required(value: Option<f64>, key: &str) -> Result<f64, ConfigError> {
+    value.ok_or_else(|| invalid!("[gap]: missing `{key}`"))
+}
+
+fn shape(spec: &GapSpec, grid: Option<&Grid>, base: &Path) -> Result<GapShape, ConfigError> {
+    let shape = match spec.kind.as_str() {
+        "quadratic" => {
+            only_keys(spec, &["A", "B", "R1x", "R1y", "R2x", "R2y"])?;
+            let by_radii = [spec.r1x, spec.r1y, spec.r2x, spec.r2y]
+                .iter()
+                .any(Option::is_some);
+            if by_radii && (spec.a.is_some() || spec.b.is_some()) {
+                bail!(
+                    "[gap]: give either `A`, `B` or the radii `R1x`, `R1y`, `R2x`, `R2y`, not both"
+                );
+            }
+            if by_radii {
+                let inf = f64::INFINITY;
+                let (a, b) = curvatures_from_radii(
+                    spec.r1x.unwrap_or(inf),
+                    spec.r1y.unwrap_or(inf),
+                    spec.r2x.unwrap_or(inf),
+                    spec.r2y.unwrap_or(inf),
+                )
+                .map_err(|e| invalid!("[gap] {e}"))?;
+                GapShape::Quadratic { a, b }
+            } else {
+                GapShape::Quadratic {
+                    a: required(spec.a, "A")?,
+                    b: required(spec.b, "B")?,
+                }
+            }
+        }
+        "sphere" => {
+            only_keys(spec, &["radius"])?;
+            GapShape::Sphere {
+                radius: required(spec.radius, "radius")?,
+            }
+        }
+        "cylinder" => {
+            only_keys(spec, &["radius", "length"])?;
+            GapShape::Cylinder {
+                radius: required(spec.radius, "radius")?,
+                length: required(spec.length, "length")?,
+            }
+        }
+        "punch" => {
+            only_keys(spec, &["radius", "edge_radius"])?;
+            GapShape::Punch {
+                radius: required(spec.radius, "radius")?,
+                edge_radius: required(spec.edge_radius, "edge_radius")?,
+            }
+        }
+        "table" => {
+            only_keys(spec, &["file"])?;
+            let file = spec
+                .file
+                .as_ref()
+                .ok_or_else(|| invalid!("[gap]: missing `file`"))?;
+            let grid = grid.ok_or_else(|| {
+                invalid!("[gap] kind = \"table\" needs a [grid] with nx, ny, dx, dy")
+            })?;
+            GapShape::Table {
+                values: read_table(&base.join(file), grid)?,
+            }
+        }
+        other => bail!(
+            "[gap] `kind` = \"{other}\": expected \"quadratic\", \"sphere\", \"cylinder\", \"punch\" or \"table\""
+        ),
+    };
+    shape.validate().map_err(|e| invalid!("[gap] {e}"))?;
+    check_gap_ranges(spec)?;
+    Ok(shape)
+}
+
+/// A tabulated gap: a CSV of `ny` lines of `nx` values \[m\]; line k is row iy = k (lowest y
+/// first). Lines starting with `#` are comments.
+fn read_table(path: &Path, grid: &Grid) -> Result<Vec<f64>, ConfigError> {
+    let text = std::fs::read_to_string(path).map_err(|source| ConfigError::Io {
+        context: format!("[gap] cannot read `file` {}", path.display()),
+        source,
+    })?;
+    let mut values = Vec::with_capacity(grid.len());
+    let mut rows = 0;
+    for (lineno, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let row: Vec<f64> = line
+            .split(',')
+            .map(|v| v.trim().parse::<f64>())
+            .collect::<Result<_, _>>()
+            .map_err(|e| invalid!("[gap] {} line {}: {e}", path.display(), lineno + 1))?;
+        if row.len() != grid.nx {
+            bail!(
+                "[gap] {} line {}: {} values, the grid has nx = {}",
+                path.display(),
+                lineno + 1,
+                row.len(),
+                grid.nx
+            );
+        }
+        if let Some(v) = row.iter().find(|v| !v.is_finite()) {
+            bail!(
+                "[gap] {} line {}: value {v} is not finite",
+                path.display(),
+                lineno + 1
+            );
+        }
+        values.extend(row);
+        rows += 1;
+    }
+    if rows != grid.ny {
+        bail!(
+            "[gap] {}: {rows} rows, the grid has ny = {}",
+            path.display(),
+            grid.ny
+        );
+    }
+    Ok(values)
+}
+
+fn explicit_grid(spec: &GridSpec) -> Result<Option<Grid>, ConfigError> {
+    let all = [
+        spec.nx.is_some(),
+        spec.ny.is_some(),
+        spec.dx.is_some(),
+        spec.dy.is_some(),
+    ];
+    if all.iter().all(|s| !s) {
+        if spec.x0.is_some() || spec.y0.is_some() {
+            bail!("[grid]: `x0`/`y0` need `nx`, `ny`, `dx`, `dy`");
+        }
+        return Ok(None);
+    }
+    if spec.n.is_some() {
+        bail!("[grid]: `n` sets the automatic grid; do not combine it with `nx`, `ny`, `dx`, `dy`");
+    }
+    let nx = spec.nx.ok_or_else(|| invalid!("[grid]: missing `nx`"))?;
+    let ny = spec.ny.ok_or_else(|| invalid!("[grid]: missing `ny`"))?;
+    let dx = spec.dx.ok_or_else(|| invalid!("[grid]: missing `dx`"))?;
+    let dy = spec.dy.ok_or_else(|| invalid!("[grid]: missing `dy`"))?;
+    let x0 = spec.x0.unwrap_or(-0.5 * nx as f64 * dx);
+    let y0 = spec.y0.unwrap_or(-0.5 * ny as f64 * dy);
+    let grid = Grid::new(nx, ny, dx, dy, x0, y0).map_err(|e| invalid!("[grid] {e}"))?;
+    checks::grid("grid.nx × grid.ny", nx, ny)?;
+    ranges::ELEMENT_SIZE.check("grid.dx", dx)?;
+    ranges::ELEMENT_SIZE.check("grid.dy", dy)?;
+    ranges::ORIGIN.check_opt("grid.x0", spec.x0)?;
+    ranges::ORIGIN.check_opt("grid.y0", spec.y0)?;
+    Ok(Some(grid))
+}
+
+fn prepare(case: ContactCase, base: &Path) -> Result<PreparedCase, ConfigError> {
+    if let Some(kind) = &case.kind
+        && kind != "contact"
+    {
+        bail!("`kind` = \"{kind}\" is not a contact case");
+    }
+    let material = material(&case)?;
+    for (key, b) in [("body1", &case.body1), ("body2", &case.body2)] {
+        ranges::MODULUS.check_opt(&format!("{key}.E"), b.e)?;
+    }
+    let load = load(&case.load)?;
+    match load {
+        NormalLoad::Force(f) => ranges::FORCE.check("load.force", f)?,
+        NormalLoad::Approach(d) => ranges::SMALL_DISPLACEMENT.check("load.approach", d)?,
+    };
+    let grid_spec = case.grid.as_ref();
+    let explicit = match grid_spec {
+        Some(g) => explicit_grid(g)?,
+        None => None,
+    };
+    let shape = shape(&case.gap, explicit.as_ref(), base)?;
+    let grid = match explicit {
+        Some(g) => g,
+        None => {
+            let n = grid_spec
+                .and_then(|g| g.n)
+                .unwrap_or(halfspace::AUTO_GRID_ELEMENTS);
+            checks::count("grid.n", n, 1, MAX_AUTO_GRID_ELEMENTS)?;
+            checks::grid("grid.n", n, n)?;
+            auto_grid(&shape, &material, load, n)
+                .map_err(|e| invalid!("[grid] automatic grid: {e}"))?
+        }
+    };
+    let gap = shape.sample(&grid).map_err(|e| invalid!("[gap] {e}"))?;
+    let mut options = SolverOptions::default();
+    if let Some(s) = &case.solver {
+        if let Some(tol) = s.tol {
+            if !tol.is_finite() || tol <= 0.0 || tol >= 1.0 {
+                bail!("[solver] `tol` = {tol}: must lie in (0, 1)");
+            }
+            ranges::TOLERANCE.check("solver.tol", tol)?;
+            options.tol = tol;
+        }
+        if let Some(m) = s.max_iter {
+            if m == 0 {
+                bail!("[solver] `max_iter` = 0: must be at least 1");
+            }
+            options.max_iter = checks::count("solver.max_iter", m, 1, MAX_ITERATIONS)?;
+        }
+    }
+    let (mu, tangential) = tangential_case(case.friction.as_ref(), case.kinematics.as_ref())?;
+    if let Some(t) = &tangential
+        && t.method != TangentialMethod::Exact
+        && !matches!(shape, GapShape::Quadratic { .. } | GapShape::Sphere { .. })
+    {
+        bail!(
+            "[kinematics] `method` = \"{}\" needs a Hertzian gap ([gap] kind = \"quadratic\" or \"sphere\")",
+            t.method.name()
+        );
+    }
+    Ok(PreparedCase {
+        material,
+        shape,
+        grid,
+        gap,
+        load,
+        options,
+        mu,
+        tangential,
+    })
+}
+
+/// Ranges of the \[gap\] keys that [`GapShape::validate`] accepts (it checks signs).
+fn check_gap_ranges(spec: &GapSpec) -> Result<(), ConfigError> {
+    ranges::CURVATURE.check_opt("gap.A", spec.a)?;
+    ranges::CURVATURE.check_opt("gap.B", spec.b)?;
+    for (key, v) in [
+        ("gap.R1x", spec.r1x),
+        ("gap.R1y", spec.r1y),
+        ("gap.R2x", spec.r2x),
+        ("gap.R2y", spec.r2y),
+    ] {
+        // An infinite radius is a flat direction.
+        if v.is_some_and(|r| r.is_finite()) {
+            checks::Range::symmetric(1e6, "m").check_opt(key, v)?;
+        }
+    }
+    ranges::RADIUS.check_opt("gap.radius", spec.radius)?;
+    ranges::RADIUS.check_opt("gap.length", spec.length)?;
+    checks::Range::closed(0.0, 1e6, "m").check_opt("gap.edge_radius", spec.edge_radius)?;
+    Ok(())
+}

@@ -1,0 +1,163 @@
+//! Scenario files: TOML text parsed once into typed structs (`serde`, unknown keys are
+//! errors), every key range-checked with an error that names it as written in the file, and
+//! converted into the input types of the physics crates.
+//!
+//! * [`load`]: a `dyncontact run` scenario, dispatched on its `kind`;
+//! * [`contact::parse`]: a contact case (`dyncontact contact`, `creep-curve`);
+//! * [`bridge::parse_bridge_file`]: a `[bridge]` section (`dyncontact modes`).
+//!
+//! Relative paths in a scenario (a gap table) are resolved against `base`, the directory of
+//! the scenario file. Sizes (grids, modes, elements, wheels, steps, output rows) are checked
+//! against the limits of [`checks`] *before* anything is allocated. SI units throughout; the
+//! numerical defaults are public constants of the submodules (docs/*.md list them).
+
+use std::path::Path;
+
+use serde::de::DeserializeOwned;
+
+/// An error of a scenario file. The message names the key as written in the file.
+#[derive(Debug, thiserror::Error)]
+pub enum ConfigError {
+    /// TOML syntax, an unknown key or a value of the wrong type.
+    #[error("{0}")]
+    Schema(String),
+    /// A value out of range, a missing key or keys that exclude each other.
+    #[error("{0}")]
+    Invalid(String),
+    /// A size or run length refused before allocating (the message states the estimate).
+    #[error("{0}")]
+    TooLarge(String),
+    /// A file named by the scenario cannot be read.
+    #[error("{context}: {source}")]
+    Io {
+        /// What was read (key and path).
+        context: String,
+        /// The cause.
+        #[source]
+        source: std::io::Error,
+    },
+}
+
+/// `ConfigError::Invalid` with a formatted message.
+macro_rules! invalid {
+    ($($t:tt)*) => { $crate::config::ConfigError::Invalid(format!($($t)*)) };
+}
+
+/// Return `ConfigError::Invalid` with a formatted message.
+macro_rules! bail {
+    ($($t:tt)*) => { return Err(invalid!($($t)*)) };
+}
+
+pub mod ball_drop;
+pub mod bridge;
+pub mod checks;
+pub mod contact;
+pub mod integrator;
+pub mod moving_load;
+pub mod vehicle_bridge;
+
+/// Scenario kinds of [`load`].
+pub const SCENARIO_KINDS: &[&str] = &["ball_drop", "contact", "moving_load", "vehicle_bridge"];
+
+/// A scenario of `dyncontact run`, validated and ready for its simulation.
+pub enum ScenarioConfig {
+    /// `kind = "ball_drop"`.
+    BallDrop(Box<ball_drop::BallDropConfig>),
+    /// `kind = "contact"`.
+    Contact(Box<contact::ContactConfig>),
+    /// `kind = "moving_load"`.
+    MovingLoad(Box<moving_load::MovingLoadConfig>),
+    /// `kind = "vehicle_bridge"`.
+    VehicleBridge(Box<vehicle_bridge::VehicleBridgeConfig>),
+}
+
+impl ScenarioConfig {
+    /// The scenario's `kind`.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Self::BallDrop(_) => "ball_drop",
+            Self::Contact(_) => "contact",
+            Self::MovingLoad(_) => "moving_load",
+            Self::VehicleBridge(_) => "vehicle_bridge",
+        }
+    }
+}
+
+/// Options of [`load`] that come from outside the file.
+#[derive(Debug, Clone, Default)]
+pub struct LoadOptions {
+    /// Replaces the ball drop's `[integrator] method` (`dyncontact run --integrator`); an
+    /// error for the other kinds.
+    pub integrator: Option<String>,
+}
+
+/// Parse a scenario's text once, dispatch on `kind`, validate. `base` is the directory that
+/// relative paths in the file are resolved against.
+pub fn load(text: &str, base: &Path, options: &LoadOptions) -> Result<ScenarioConfig, ConfigError> {
+    let table = parse_table(text)?;
+    let kind = match table.get_ref().get("kind").map(|v| v.get_ref()) {
+        Some(toml::de::DeValue::String(k)) => k.to_string(),
+        Some(other) => {
+            bail!(
+                "`kind` must be a string, found a {} (known kinds: {})",
+                other.type_str(),
+                SCENARIO_KINDS.join(", ")
+            )
+        }
+        None => bail!(
+            "missing `kind` (known kinds: {})",
+            SCENARIO_KINDS.join(", ")
+        ),
+    };
+    if let Some(name) = &options.integrator
+        && kind != "ball_drop"
+    {
+        bail!(
+            "--integrator {name}: kind = \"{kind}\" does not take --integrator; set its integrator in the scenario file"
+        );
+    }
+    match kind.as_str() {
+        "ball_drop" => {
+            let file = deserialize(table, text)?;
+            ball_drop::build(file, options.integrator.as_deref())
+                .map(|c| ScenarioConfig::BallDrop(Box::new(c)))
+        }
+        "contact" => {
+            let file = deserialize(table, text)?;
+            contact::build(file, base).map(|c| ScenarioConfig::Contact(Box::new(c)))
+        }
+        "moving_load" => {
+            let file = deserialize(table, text)?;
+            moving_load::build(file).map(|c| ScenarioConfig::MovingLoad(Box::new(c)))
+        }
+        "vehicle_bridge" => {
+            let file = deserialize(table, text)?;
+            vehicle_bridge::build(file).map(|c| ScenarioConfig::VehicleBridge(Box::new(c)))
+        }
+        other => bail!(
+            "unknown `kind` = \"{other}\" (known kinds: {})",
+            SCENARIO_KINDS.join(", ")
+        ),
+    }
+}
+
+type Document<'i> = toml::Spanned<toml::de::DeTable<'i>>;
+
+/// The one TOML parse of a file.
+fn parse_table(text: &str) -> Result<Document<'_>, ConfigError> {
+    toml::de::DeTable::parse(text)
+        .map_err(|e| ConfigError::Schema(format!("invalid scenario file: {e}")))
+}
+
+/// The typed file struct of a parsed document (errors point at the line of the key).
+fn deserialize<T: DeserializeOwned>(table: Document<'_>, text: &str) -> Result<T, ConfigError> {
+    T::deserialize(toml::de::Deserializer::from(table)).map_err(|mut e| {
+        e.set_input(Some(text));
+        ConfigError::Schema(format!("invalid scenario file: {e}"))
+    })
+}
+
+/// Parse text straight into a typed file struct (one parse).
+fn from_str<T: DeserializeOwned>(text: &str) -> Result<T, ConfigError> {
+    deserialize(parse_table(text)?, text)
+}

@@ -1,0 +1,634 @@
+//! `kind = "vehicle_bridge"`: wheels over a modal bridge with local contact
+//! (docs/vehicle_bridge.md). Every key is in SI units; unknown keys are errors.
+
+use integrate::structural::StructuralMethod;
+use serde::Deserialize;
+
+use super::ConfigError;
+use super::bridge::BridgeSpec;
+use super::checks::{self, MAX_ITERATIONS, ranges};
+use super::integrator::StructuralParameters;
+use crate::vehicle_bridge::traction::{TractionDrive, TractionMethod, TractionSpec};
+use crate::vehicle_bridge::{
+    ContactGeometry, ContactModel, CouplingSolver, CouplingSpec, GRAVITY, Irregularity, Radau5Spec,
+    Scenario, TrackSpectrum, WheelSpec,
+};
+
+/// Default contact geometry and material: a 0.92 m wheel (R = 0.46 m) on a rail head of
+/// transverse radius 0.3 m, steel on steel (E = 210 GPa, ν = 0.3).
+pub const DEFAULT_GEOMETRY: ContactGeometry = ContactGeometry {
+    wheel_radius: 0.46,
+    rail_profile_radius: 0.3,
+    youngs_modulus: 210e9,
+    poisson_ratio: 0.3,
+};
+/// Default contact model.
+pub const DEFAULT_CONTACT_MODEL: &str = "rigid";
+/// Default boundary-element grid of `model = "bem"` (elements per side).
+pub const DEFAULT_BEM_GRID: usize = 32;
+/// Default NormCG tolerance of `model = "bem"`.
+pub const DEFAULT_BEM_TOL: f64 = 1e-8;
+/// Default structural method.
+pub const DEFAULT_METHOD: &str = "newmark";
+/// Default time step \[s\].
+pub const DEFAULT_DT: f64 = 1e-4;
+/// Default coupling solver (tolerance and limits: [`CouplingSpec::default`]).
+pub const DEFAULT_COUPLING_SOLVER: &str = "quasi_newton";
+/// Default number of pressure snapshots.
+pub const DEFAULT_SNAPSHOTS: usize = 6;
+/// Largest number of pressure snapshots.
+pub const MAX_SNAPSHOTS: usize = 1000;
+/// Default FASTSIM elements per direction of `[traction]`.
+pub const DEFAULT_FASTSIM_ELEMENTS: usize = 40;
+/// Default shortest wavelength of a random irregularity \[m\].
+pub const DEFAULT_LAMBDA_MIN: f64 = 1.0;
+/// Default longest wavelength of a random irregularity \[m\].
+pub const DEFAULT_LAMBDA_MAX: f64 = 50.0;
+/// Default number of cosines of a random irregularity.
+pub const DEFAULT_IRREGULARITY_COMPONENTS: usize = 500;
+/// Largest setup work of a random irregularity (table points × cosines).
+pub const MAX_IRREGULARITY_WORK: f64 = 2e9;
+/// Largest estimated work of a run with boundary-element contact (floating-point operations;
+/// about a day at 1e10 operations per second).
+pub const MAX_BEM_WORK: f64 = 1e15;
+
+/// A validated vehicle–bridge scenario.
+pub struct VehicleBridgeConfig {
+    /// The scenario of [`crate::vehicle_bridge::Simulation::new`].
+    pub scenario: Scenario,
+    /// Longitudinal friction (`[traction]`), if given.
+    pub traction: Option<TractionSpec>,
+    /// Radau5 integration (`[integrator] method = "radau5"`), if chosen.
+    pub radau5: Option<Radau5Spec>,
+    /// Record every n-th step (`output.every`).
+    pub every: usize,
+    /// Number of pressure snapshots (`output.snapshots`).
+    pub snapshots: usize,
+    /// Warnings for the user (the scenario is valid but has a known weakness).
+    pub warnings: Vec<String>,
+}
+
+/// The scenario file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VehicleBridgeFile {
+    pub kind: String,
+    pub bridge: BridgeSpec,
+    pub vehicle: VehicleSpec,
+    pub contact: Option<ContactSpec>,
+    pub irregularity: Option<IrregularitySpec>,
+    pub integrator: Option<IntegratorSpec>,
+    pub coupling: Option<CouplingToml>,
+    pub output: Option<OutputSpec>,
+    /// Longitudinal friction (optional; docs/vehicle_bridge.md, "Traction (friction)").
+    pub traction: Option<TractionToml>,
+}
+
+/// `[traction]`: friction coefficient, tangential method and either a prescribed creepage or
+/// a wheel torque [N m] with the wheel's polar inertia [kg m²].
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TractionToml {
+    pub mu: f64,
+    pub method: Option<String>,
+    pub creepage: Option<f64>,
+    pub torque: Option<f64>,
+    pub wheel_inertia: Option<f64>,
+    pub fastsim_elements: Option<usize>,
+}
+
+/// The `[traction]` section (`None` when absent: no friction). Values are range-checked by
+/// [`TractionSpec::validate`] with errors naming the key.
+fn traction(traction: Option<&TractionToml>) -> Result<Option<TractionSpec>, ConfigError> {
+    let Some(t) = traction else {
+        return Ok(None);
+    };
+    let name = t.method.as_deref().unwrap_or("fastsim");
+    let method = TractionMethod::by_name(name).ok_or_else(|| {
+        invalid!("[traction] `method` = \"{name}\": expected exact, fastsim or linear")
+    })?;
+    let drive = match (t.creepage, t.torque, t.wheel_inertia) {
+        (Some(xi), None, None) => TractionDrive::Creepage(xi),
+        (None, Some(torque), Some(inertia)) => TractionDrive::Torque { torque, inertia },
+        (None, Some(_), None) => bail!("[traction]: `torque` needs `wheel_inertia` [kg m²]"),
+        (None, None, Some(_)) => bail!("[traction]: `wheel_inertia` applies with `torque` only"),
+        (None, None, None) => bail!("[traction]: give exactly one of `creepage` or `torque`"),
+        (Some(_), _, _) => {
+            bail!("[traction]: `creepage` and `torque`/`wheel_inertia` exclude each other")
+        }
+    };
+    let spec = TractionSpec {
+        mu: t.mu,
+        method,
+        drive,
+        fastsim_elements: t.fastsim_elements.unwrap_or(DEFAULT_FASTSIM_ELEMENTS),
+    };
+    spec.validate().map_err(|e| invalid!("[traction]: {e}"))?;
+    ranges::FRICTION.check("traction.mu", spec.mu)?;
+    match spec.drive {
+        TractionDrive::Creepage(xi) => {
+            ranges::CREEPAGE.check("traction.creepage", xi)?;
+        }
+        TractionDrive::Torque { torque, inertia } => {
+            ranges::TORQUE.check("traction.torque", torque)?;
+            ranges::INERTIA.check("traction.wheel_inertia", inertia)?;
+        }
+    }
+    checks::count("traction.fastsim_elements", spec.fastsim_elements, 1, 1000)?;
+    Ok(Some(spec))
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct VehicleSpec {
+    pub speed: f64,
+    pub wheels: Vec<WheelToml>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WheelToml {
+    pub position: Option<f64>,
+    pub wheel_mass: f64,
+    pub body_mass: Option<f64>,
+    pub suspension_stiffness: Option<f64>,
+    pub suspension_damping: Option<f64>,
+    pub static_load: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSpec {
+    pub model: Option<String>,
+    pub wheel_radius: Option<f64>,
+    pub rail_profile_radius: Option<f64>,
+    #[serde(rename = "E")]
+    pub e: Option<f64>,
+    pub nu: Option<f64>,
+    pub grid: Option<usize>,
+    pub bem_tol: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct IrregularitySpec {
+    pub kind: String,
+    pub position: Option<f64>,
+    pub length: Option<f64>,
+    pub depth: Option<f64>,
+    pub height: Option<f64>,
+    pub amplitude: Option<f64>,
+    pub wavelength: Option<f64>,
+    pub start: Option<f64>,
+    pub end: Option<f64>,
+    pub spectrum: Option<String>,
+    pub lambda_min: Option<f64>,
+    pub lambda_max: Option<f64>,
+    pub components: Option<usize>,
+    pub seed: Option<u64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct IntegratorSpec {
+    pub method: Option<String>,
+    pub dt: Option<f64>,
+    pub beta: Option<f64>,
+    pub gamma: Option<f64>,
+    pub alpha: Option<f64>,
+    pub rho_inf: Option<f64>,
+    pub duration: Option<f64>,
+    /// Radau5 tolerances (only with `method = "radau5"`).
+    pub rtol: Option<f64>,
+    pub atol: Option<f64>,
+}
+
+/// `[integrator] method = "radau5"`: the Radau5 tolerances (`rtol`, `atol`; defaults of
+/// [`Radau5Spec`]), or `None` for a structural method. `rtol`/`atol` with another method are
+/// an error naming the key.
+fn radau5(integrator: Option<&IntegratorSpec>) -> Result<Option<Radau5Spec>, ConfigError> {
+    let Some(i) = integrator else {
+        return Ok(None);
+    };
+    let radau = i
+        .method
+        .as_deref()
+        .is_some_and(|m| m.trim().eq_ignore_ascii_case("radau5"));
+    if !radau {
+        for (key, v) in [("rtol", i.rtol), ("atol", i.atol)] {
+            if v.is_some() {
+                bail!("[integrator] `{key}` is only used by method = \"radau5\"");
+            }
+        }
+        return Ok(None);
+    }
+    let d = Radau5Spec::default();
+    Ok(Some(Radau5Spec {
+        rtol: ranges::TOLERANCE.check("integrator.rtol", i.rtol.unwrap_or(d.rtol))?,
+        atol: ranges::ABS_TOLERANCE.check("integrator.atol", i.atol.unwrap_or(d.atol))?,
+    }))
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CouplingToml {
+    pub solver: Option<String>,
+    pub tol: Option<f64>,
+    pub max_iter: Option<usize>,
+    pub max_halvings: Option<usize>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// Record every n-th step.
+    pub every: Option<usize>,
+    /// Output point of the bridge response \[m\] (default midspan).
+    pub point: Option<f64>,
+    /// Number of pressure snapshots along the passage.
+    pub snapshots: Option<usize>,
+}
+
+/// Parses and validates a scenario file's text.
+pub fn parse(text: &str) -> Result<VehicleBridgeConfig, ConfigError> {
+    build(super::from_str(text)?)
+}
+
+/// Validates a parsed scenario file.
+pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError> {
+    // Sizes first, before the bridge's modes are computed.
+    checks::count(
+        "vehicle.wheels",
+        file.vehicle.wheels.len(),
+        0,
+        checks::MAX_WHEELS,
+    )?;
+    if file.kind != "vehicle_bridge" {
+        bail!("`kind` = \"{}\": expected \"vehicle_bridge\"", file.kind);
+    }
+    let bridge = file.bridge.build()?;
+    let length = bridge.basis.length();
+    if file.vehicle.wheels.is_empty() {
+        bail!("[vehicle]: at least one [[vehicle.wheels]] table is needed");
+    }
+    let wheels: Vec<WheelSpec> = file
+        .vehicle
+        .wheels
+        .iter()
+        .map(|w| WheelSpec {
+            position: w.position.unwrap_or(0.0),
+            wheel_mass: w.wheel_mass,
+            body_mass: w.body_mass.unwrap_or(0.0),
+            suspension_stiffness: w.suspension_stiffness.unwrap_or(0.0),
+            suspension_damping: w.suspension_damping.unwrap_or(0.0),
+            static_load: w.static_load.unwrap_or(0.0),
+        })
+        .collect();
+
+    let c = file.contact.as_ref();
+    let geometry = ContactGeometry {
+        wheel_radius: c
+            .and_then(|c| c.wheel_radius)
+            .unwrap_or(DEFAULT_GEOMETRY.wheel_radius),
+        rail_profile_radius: c
+            .and_then(|c| c.rail_profile_radius)
+            .unwrap_or(DEFAULT_GEOMETRY.rail_profile_radius),
+        youngs_modulus: c
+            .and_then(|c| c.e)
+            .unwrap_or(DEFAULT_GEOMETRY.youngs_modulus),
+        poisson_ratio: c
+            .and_then(|c| c.nu)
+            .unwrap_or(DEFAULT_GEOMETRY.poisson_ratio),
+    };
+    let contact = match c
+        .and_then(|c| c.model.as_deref())
+        .unwrap_or(DEFAULT_CONTACT_MODEL)
+    {
+        "rigid" => ContactModel::Rigid,
+        "hertz" => ContactModel::Hertz,
+        "bem" => {
+            let elements = c.and_then(|c| c.grid).unwrap_or(DEFAULT_BEM_GRID);
+            checks::grid("contact.grid", elements, elements)?;
+            // Every wheel holds its own solver and grid.
+            checks::memory(
+                "`contact.grid` for every wheel",
+                (elements * elements) as f64 * wheels.len() as f64,
+                checks::GRID_BYTES_PER_ELEMENT,
+            )?;
+            ContactModel::Bem {
+                elements,
+                tol: ranges::TOLERANCE.check(
+                    "contact.bem_tol",
+                    c.and_then(|c| c.bem_tol).unwrap_or(DEFAULT_BEM_TOL),
+                )?,
+            }
+        }
+        other => bail!("[contact] `model` = \"{other}\": expected rigid, hertz or bem"),
+    };
+    if let Some(c) = c
+        && !matches!(contact, ContactModel::Bem { .. })
+        && (c.grid.is_some() || c.bem_tol.is_some())
+    {
+        bail!("[contact]: `grid` and `bem_tol` apply to model = \"bem\" only");
+    }
+
+    let irregularity = match &file.irregularity {
+        None => Irregularity::None,
+        Some(spec) => irregularity(spec, geometry.wheel_radius)?,
+    };
+
+    let integ = file.integrator.as_ref();
+    let method_name = integ
+        .and_then(|i| i.method.as_deref())
+        .unwrap_or(DEFAULT_METHOD);
+    let params = StructuralParameters {
+        beta: integ.and_then(|i| i.beta),
+        gamma: integ.and_then(|i| i.gamma),
+        alpha: integ.and_then(|i| i.alpha),
+        rho_inf: integ.and_then(|i| i.rho_inf),
+    };
+    // radau5 replaces the structural method (Simulation::set_radau5); the scenario keeps a
+    // placeholder that is not used.
+    let method = if method_name.trim().eq_ignore_ascii_case("radau5") {
+        StructuralMethod::average_acceleration()
+    } else {
+        params.method(method_name)?
+    };
+    let mut warnings = Vec::new();
+    if contact == ContactModel::Rigid
+        && !method_name.trim().eq_ignore_ascii_case("radau5")
+        && matches!(method, StructuralMethod::Newmark { gamma, .. } if gamma <= 0.5)
+    {
+        warnings.push(
+            "rigid contact with the undamped Newmark rule (gamma = 0.5): the contact multiplier can ring and grow at a slope kink (a wheel entering a deflected span); [integrator] method = \"generalized_alpha\" or \"hht\" damps it (docs/vehicle_bridge.md)"
+                .to_string(),
+        );
+    }
+    let dt = integ.and_then(|i| i.dt).unwrap_or(DEFAULT_DT);
+    let duration = integ.and_then(|i| i.duration);
+
+    let cp = file.coupling.as_ref();
+    let solver_name = cp
+        .and_then(|c| c.solver.as_deref())
+        .unwrap_or(DEFAULT_COUPLING_SOLVER);
+    let solver = CouplingSolver::by_name(solver_name).ok_or_else(|| {
+        invalid!("[coupling] `solver` = \"{solver_name}\": expected picard, quasi_newton or newton")
+    })?;
+    let defaults = CouplingSpec::default();
+    let coupling = CouplingSpec {
+        solver,
+        tol: cp.and_then(|c| c.tol).unwrap_or(defaults.tol),
+        max_iter: cp.and_then(|c| c.max_iter).unwrap_or(defaults.max_iter),
+        max_halvings: cp
+            .and_then(|c| c.max_halvings)
+            .unwrap_or(defaults.max_halvings),
+    };
+    let out = file.output.as_ref();
+    let every = out.and_then(|o| o.every).unwrap_or(1);
+    if every == 0 {
+        bail!("[output] `every` must be at least 1");
+    }
+    let snapshots = checks::count(
+        "output.snapshots",
+        out.and_then(|o| o.snapshots).unwrap_or(DEFAULT_SNAPSHOTS),
+        0,
+        MAX_SNAPSHOTS,
+    )?;
+    let scenario = Scenario {
+        output_point: out.and_then(|o| o.point).unwrap_or(0.5 * length),
+        bridge: bridge.basis,
+        damping: bridge.damping,
+        wheels,
+        speed: file.vehicle.speed,
+        contact,
+        geometry,
+        irregularity,
+        method,
+        dt,
+        duration,
+        coupling,
+        gravity: GRAVITY,
+    };
+    check_ranges(&scenario)?;
+    check_run_length(&scenario, every)?;
+    let radau5 = radau5(file.integrator.as_ref())?;
+    if radau5.is_none() {
+        check_implicit(&scenario)?;
+    }
+    check_coupling(&scenario)?;
+    let traction = traction(file.traction.as_ref())?;
+    Ok(VehicleBridgeConfig {
+        scenario,
+        traction,
+        radau5,
+        every,
+        snapshots,
+        warnings,
+    })
+}
+
+fn need(v: Option<f64>, key: &str, kind: &str) -> Result<f64, ConfigError> {
+    v.ok_or_else(|| invalid!("[irregularity] kind = \"{kind}\" needs `{key}`"))
+}
+
+fn irregularity(spec: &IrregularitySpec, wheel_radius: f64) -> Result<Irregularity, ConfigError> {
+    let k = spec.kind.as_str();
+    let irr = match k {
+        "none" => Irregularity::None,
+        "dip" | "dipped_joint" => Irregularity::Dip {
+            position: need(spec.position, "position", k)?,
+            length: need(spec.length, "length", k)?,
+            depth: need(spec.depth, "depth", k)?,
+        },
+        "ramp" => Irregularity::Ramp {
+            position: need(spec.position, "position", k)?,
+            length: need(spec.length, "length", k)?,
+            height: need(spec.height, "height", k)?,
+        },
+        "wheel_flat" => {
+            let length = need(spec.length, "length", k)?;
+            // A fresh flat of chord ℓ has depth ℓ²/(8R) (references.md §D2.5) unless given.
+            let depth = spec.depth.unwrap_or(length * length / (8.0 * wheel_radius));
+            Irregularity::WheelFlat {
+                position: spec.position.unwrap_or(0.0),
+                length,
+                depth,
+                wheel_radius,
+            }
+        }
+        "corrugation" => Irregularity::Corrugation {
+            amplitude: need(spec.amplitude, "amplitude", k)?,
+            wavelength: need(spec.wavelength, "wavelength", k)?,
+            start: spec.start.unwrap_or(f64::NEG_INFINITY).max(-1e300),
+            end: spec.end.unwrap_or(f64::INFINITY).min(1e300),
+        },
+        "random" => {
+            let name = spec
+                .spectrum
+                .as_deref()
+                .ok_or_else(|| invalid!("[irregularity] kind = \"random\" needs `spectrum`"))?;
+            let spectrum = TrackSpectrum::by_name(name).ok_or_else(|| {
+                invalid!(
+                    "[irregularity] `spectrum` = \"{name}\": expected fra1 … fra6, german_low or german_high"
+                )
+            })?;
+            let components = checks::count(
+                "irregularity.components",
+                spec.components.unwrap_or(DEFAULT_IRREGULARITY_COMPONENTS),
+                1,
+                checks::MAX_IRREGULARITY_COMPONENTS,
+            )?;
+            Irregularity::random(
+                spectrum,
+                spec.lambda_min.unwrap_or(DEFAULT_LAMBDA_MIN),
+                spec.lambda_max.unwrap_or(DEFAULT_LAMBDA_MAX),
+                components,
+                spec.seed.unwrap_or(1),
+            )
+            .map_err(|e| invalid!("{e}"))?
+        }
+        other => bail!(
+            "[irregularity] `kind` = \"{other}\": expected none, dip, ramp, wheel_flat, corrugation or random"
+        ),
+    };
+    irr.validate().map_err(|e| invalid!("{e}"))?;
+    check_irregularity_ranges(spec)?;
+    Ok(irr)
+}
+
+/// Physical ranges of the keys (after the sign checks above, whose messages are kept).
+fn check_ranges(s: &Scenario) -> Result<(), ConfigError> {
+    for (k, w) in s.wheels.iter().enumerate() {
+        let key = |f: &str| format!("vehicle.wheels[{k}].{f}");
+        ranges::POSITION.check(&key("position"), w.position)?;
+        ranges::MASS_OR_ZERO.check(&key("wheel_mass"), w.wheel_mass)?;
+        ranges::MASS_OR_ZERO.check(&key("body_mass"), w.body_mass)?;
+        ranges::STIFFNESS.check(&key("suspension_stiffness"), w.suspension_stiffness)?;
+        ranges::DAMPER.check(&key("suspension_damping"), w.suspension_damping)?;
+        ranges::FORCE.check(&key("static_load"), w.static_load)?;
+    }
+    ranges::SPEED.check("vehicle.speed", s.speed)?;
+    s.geometry.material().map_err(|e| invalid!("{e}"))?;
+    ranges::RADIUS.check("contact.wheel_radius", s.geometry.wheel_radius)?;
+    ranges::RADIUS.check(
+        "contact.rail_profile_radius",
+        s.geometry.rail_profile_radius,
+    )?;
+    ranges::MODULUS.check("contact.E", s.geometry.youngs_modulus)?;
+    ranges::TIME_STEP.check("integrator.dt", s.dt)?;
+    ranges::DURATION.check_opt("integrator.duration", s.duration)?;
+    ranges::TOLERANCE.check("coupling.tol", s.coupling.tol)?;
+    checks::count("coupling.max_iter", s.coupling.max_iter, 1, MAX_ITERATIONS)?;
+    checks::count("coupling.max_halvings", s.coupling.max_halvings, 0, 40)?;
+    let length = s.bridge.length();
+    if !(s.output_point.is_finite() && (0.0..=length).contains(&s.output_point)) {
+        bail!(
+            "`output.point` = {}: must lie on the span [0, {length}] m",
+            checks::number(s.output_point)
+        );
+    }
+    Ok(())
+}
+
+/// The simulated time of a scenario: `integrator.duration`, or until the first wheel has
+/// left the span (as [`crate::vehicle_bridge::Simulation::end_time`]).
+fn end_time(s: &Scenario) -> f64 {
+    s.duration.unwrap_or_else(|| {
+        let first = s
+            .wheels
+            .iter()
+            .map(|w| w.position)
+            .fold(f64::INFINITY, f64::min);
+        ((s.bridge.length() - first) / s.speed).max(0.0)
+    })
+}
+
+/// Steps, output rows and setup/contact work of the run, refused when absurd.
+fn check_run_length(s: &Scenario, every: usize) -> Result<(), ConfigError> {
+    let end = end_time(s);
+    let steps = checks::steps(
+        "the run (integrator.duration or the passage) at integrator.dt",
+        end / s.dt,
+    )?;
+    let rows = steps / every as f64 + 2.0;
+    checks::output_rows("the run with output.every", rows)?;
+    // t, midspan (3), iterations, per wheel about 12 values.
+    checks::memory(
+        "the recorded time series (output.every)",
+        rows,
+        8.0 * (5.0 + 12.0 * s.wheels.len() as f64),
+    )?;
+    if let Irregularity::Random(p) = &s.irregularity {
+        let w_max = p.wavenumbers.iter().copied().fold(0.0, f64::max);
+        let (lo, hi) = s
+            .wheels
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), w| {
+                (lo.min(w.position), hi.max(w.position))
+            });
+        let travel = hi - lo + s.speed * end + 2.0;
+        let points = travel * w_max * 64.0 / std::f64::consts::TAU;
+        let work = points * p.wavenumbers.len() as f64;
+        if work.is_nan() || work > MAX_IRREGULARITY_WORK {
+            return Err(ConfigError::TooLarge(format!(
+                "the random irregularity over {} m of track (vehicle.speed × duration) with irregularity.components = {} and irregularity.lambda_min needs about {} cosine evaluations to tabulate (limit {})",
+                checks::number(travel),
+                p.wavenumbers.len(),
+                checks::number(work),
+                checks::number(MAX_IRREGULARITY_WORK)
+            )));
+        }
+    }
+    if let ContactModel::Bem { elements, .. } = s.contact {
+        let n = (elements * elements) as f64;
+        // An FFT convolution on the doubled grid per CG iteration, ~20 iterations per solve,
+        // ~3 solves per step and wheel.
+        let work = steps * s.wheels.len() as f64 * 60.0 * 4.0 * n * (4.0 * n).log2().max(1.0) * 5.0;
+        if work.is_nan() || work > MAX_BEM_WORK {
+            return Err(ConfigError::TooLarge(format!(
+                "boundary-element contact on a {elements} × {elements} grid (contact.grid) for {} wheels over {} steps needs about {} floating-point operations (limit {}); use a coarser contact.grid, model = \"hertz\" or a larger integrator.dt",
+                s.wheels.len(),
+                checks::number(steps),
+                checks::number(work),
+                checks::number(MAX_BEM_WORK)
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The coupled step needs an implicit structural method (not for Radau5).
+fn check_implicit(s: &Scenario) -> Result<(), ConfigError> {
+    if s.method.is_explicit() {
+        bail!(
+            "`integrator.method` = \"{}\": the coupled step needs an implicit method (newmark with beta > 0, hht, generalized_alpha, backward_euler, radau5)",
+            s.method.name()
+        );
+    }
+    Ok(())
+}
+
+/// Combinations of `coupling.solver` and `contact.model` that cannot work.
+fn check_coupling(s: &Scenario) -> Result<(), ConfigError> {
+    if s.coupling.solver == CouplingSolver::Picard && s.contact == ContactModel::Rigid {
+        bail!(
+            "`coupling.solver` = \"picard\": picard needs a compliant contact (contact.model = \"hertz\" or \"bem\"); a rigid contact has no force law to iterate on: use quasi_newton or newton"
+        );
+    }
+    Ok(())
+}
+
+/// Ranges of the `[irregularity]` keys.
+fn check_irregularity_ranges(spec: &IrregularitySpec) -> Result<(), ConfigError> {
+    ranges::POSITION.check_opt("irregularity.position", spec.position)?;
+    ranges::SPAN.check_opt("irregularity.length", spec.length)?;
+    ranges::SMALL_DISPLACEMENT.check_opt("irregularity.depth", spec.depth)?;
+    ranges::SMALL_DISPLACEMENT.check_opt("irregularity.height", spec.height)?;
+    ranges::SMALL_DISPLACEMENT.check_opt("irregularity.amplitude", spec.amplitude)?;
+    ranges::SPAN.check_opt("irregularity.wavelength", spec.wavelength)?;
+    ranges::POSITION.check_opt("irregularity.start", spec.start)?;
+    ranges::POSITION.check_opt("irregularity.end", spec.end)?;
+    ranges::SPAN.check_opt("irregularity.lambda_min", spec.lambda_min)?;
+    ranges::SPAN.check_opt("irregularity.lambda_max", spec.lambda_max)?;
+    Ok(())
+}
