@@ -177,7 +177,7 @@ pub(super) fn plan(
         Integrator::Structural { .. } => "increase `dt_flight` or shorten `duration`",
         _ => "shorten `duration`",
     };
-    if !(estimated_steps <= MAX_STEPS) {
+    if estimated_steps.is_nan() || estimated_steps > MAX_STEPS {
         return Err(invalid(
             "duration",
             s.duration,
@@ -188,7 +188,7 @@ pub(super) fn plan(
     }
     if let ForceModel::Bem { elements, .. } = s.model {
         let work = contact_steps.min(estimated_steps) * (elements * elements) as f64;
-        if !(work <= MAX_BEM_WORK) {
+        if work.is_nan() || work > MAX_BEM_WORK {
             return Err(invalid(
                 "duration",
                 s.duration,
