@@ -9,7 +9,10 @@
 
 use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, PI};
 
-use crate::error::{BeamError, inside_span, positive};
+use crate::error::{
+    BENDING_STIFFNESS_RANGE, BeamError, LENGTH_RANGE, MASS_PER_LENGTH_RANGE, MAX_MODES, check_size,
+    in_range, inside_span, positive,
+};
 use crate::modal::{Derivative, ModalBasis, check_len, check_mode};
 
 /// Boundary conditions of a single-span uniform beam (left end first).
@@ -148,16 +151,30 @@ pub struct UniformBeam {
 }
 
 impl UniformBeam {
-    /// Validate L > 0, EI > 0, ρA > 0 (all finite).
+    /// Validate L > 0, EI > 0, ρA > 0 (all finite) and their physical ranges
+    /// ([`LENGTH_RANGE`], [`BENDING_STIFFNESS_RANGE`], [`MASS_PER_LENGTH_RANGE`]).
     pub fn new(
         length: f64,
         bending_stiffness: f64,
         mass_per_length: f64,
     ) -> Result<Self, BeamError> {
+        let length = positive("length", length)?;
+        let bending_stiffness = positive("bending_stiffness", bending_stiffness)?;
+        let mass_per_length = positive("mass_per_length", mass_per_length)?;
         Ok(Self {
-            length: positive("length", length)?,
-            bending_stiffness: positive("bending_stiffness", bending_stiffness)?,
-            mass_per_length: positive("mass_per_length", mass_per_length)?,
+            length: in_range("length", length, LENGTH_RANGE, "m")?,
+            bending_stiffness: in_range(
+                "bending_stiffness",
+                bending_stiffness,
+                BENDING_STIFFNESS_RANGE,
+                "N m^2",
+            )?,
+            mass_per_length: in_range(
+                "mass_per_length",
+                mass_per_length,
+                MASS_PER_LENGTH_RANGE,
+                "kg/m",
+            )?,
         })
     }
 
@@ -210,6 +227,10 @@ impl AnalyticBeam {
                 reason: "at least one mode is needed",
             });
         }
+        // Roots, frequencies and forms: about 64 bytes per mode.
+        check_size("n_modes", n_modes, MAX_MODES, "the analytic basis", |n| {
+            64.0 * n as f64
+        })?;
         let beam = UniformBeam::new(beam.length, beam.bending_stiffness, beam.mass_per_length)?;
         let rho_l = beam.mass_per_length * beam.length;
         let mut roots = Vec::with_capacity(n_modes);

@@ -87,6 +87,56 @@ pub enum BeamError {
     /// A structural time integrator of the `integrate` crate failed.
     #[error("time integrator failed: {0}")]
     Integrator(#[from] integrate::IntegrateError),
+    /// A physical quantity lies outside the range the models are meant for.
+    #[error(
+        "`{name}` = {value:e} {unit} lies outside the physical range [{min:e}, {max:e}] {unit}"
+    )]
+    OutOfRange {
+        /// Name of the quantity.
+        name: &'static str,
+        /// The offending value.
+        value: f64,
+        /// Smallest accepted value.
+        min: f64,
+        /// Largest accepted value.
+        max: f64,
+        /// SI unit of the quantity.
+        unit: &'static str,
+    },
+    /// A size (modes, elements) would need more memory than allowed; checked before
+    /// allocating.
+    #[error(
+        "`{name}` = {value} is too large: {what} needs about {bytes_required:.3e} bytes ({gib:.1} GiB; limit {limit_bytes:.1e} bytes, at most {max} allowed)",
+        gib = bytes_required / 1073741824.0
+    )]
+    TooLarge {
+        /// Name of the count.
+        name: &'static str,
+        /// The requested count.
+        value: usize,
+        /// Largest count accepted.
+        max: usize,
+        /// What would be allocated.
+        what: &'static str,
+        /// Memory the request would need \[bytes\].
+        bytes_required: f64,
+        /// The memory limit \[bytes\].
+        limit_bytes: f64,
+    },
+    /// The time step of a conditionally stable (explicit) method exceeds its stability limit.
+    #[error(
+        "time step dt = {dt:e} s exceeds the stability limit {limit:e} s of the explicit method `{method}` (2/ω_max for central difference and Verlet; ω_max = {omega_max:e} rad/s of the highest retained mode): use dt <= {limit:e} s, fewer modes, or an implicit method (newmark, hht, generalized_alpha)"
+    )]
+    StepAboveStabilityLimit {
+        /// The method's name.
+        method: &'static str,
+        /// The requested step \[s\].
+        dt: f64,
+        /// The largest stable step \[s\].
+        limit: f64,
+        /// Highest circular frequency retained \[rad/s\].
+        omega_max: f64,
+    },
     /// More modes were requested than the discrete model has degrees of freedom.
     #[error(
         "requested {requested} modes but the model has only {available} free degrees of freedom"
@@ -145,4 +195,61 @@ pub(crate) fn inside_span(name: &'static str, x: f64, length: f64) -> Result<f64
     } else {
         Err(BeamError::OutsideSpan { name, x, length })
     }
+}
+
+/// Memory allowed for one beam model or solver \[bytes\] (4 GiB).
+pub const MEMORY_LIMIT_BYTES: f64 = 4.0 * 1073741824.0;
+/// Largest number of modes of a basis or a modal solve.
+pub const MAX_MODES: usize = 2000;
+/// Largest number of finite elements.
+pub const MAX_ELEMENTS: usize = 5000;
+/// Physical range of the bending stiffness EI \[N m²\] (a 1 mm wire to the stiffest bridge
+/// girders).
+pub const BENDING_STIFFNESS_RANGE: (f64, f64) = (1e-6, 1e14);
+/// Physical range of the mass per length ρA \[kg/m\].
+pub const MASS_PER_LENGTH_RANGE: (f64, f64) = (1e-6, 1e7);
+/// Physical range of a span or section length \[m\].
+pub const LENGTH_RANGE: (f64, f64) = (1e-3, 1e4);
+
+/// Check that `value` lies in `range` (finite, positive checked before).
+pub(crate) fn in_range(
+    name: &'static str,
+    value: f64,
+    (min, max): (f64, f64),
+    unit: &'static str,
+) -> Result<f64, BeamError> {
+    if value >= min && value <= max {
+        Ok(value)
+    } else {
+        Err(BeamError::OutOfRange {
+            name,
+            value,
+            min,
+            max,
+            unit,
+        })
+    }
+}
+
+/// Check a count against its maximum and the memory `bytes_per(count)` it needs, before
+/// anything is allocated.
+pub(crate) fn check_size(
+    name: &'static str,
+    value: usize,
+    max: usize,
+    what: &'static str,
+    bytes_per: impl Fn(usize) -> f64,
+) -> Result<(), BeamError> {
+    let bytes_required = bytes_per(value);
+    if value > max || bytes_required > MEMORY_LIMIT_BYTES {
+        return Err(BeamError::TooLarge {
+            name,
+            value,
+            max,
+            what,
+            bytes_required,
+            limit_bytes: MEMORY_LIMIT_BYTES,
+        });
+    }
+    Ok(())
 }

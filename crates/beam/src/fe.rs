@@ -22,7 +22,10 @@ use faer::linalg::triangular_solve::{
 use faer::{Mat, Par, Side};
 
 use crate::banded::SymmetricBand;
-use crate::error::{BeamError, finite, inside_span, non_negative, positive};
+use crate::error::{
+    BENDING_STIFFNESS_RANGE, BeamError, LENGTH_RANGE, MASS_PER_LENGTH_RANGE, MAX_ELEMENTS,
+    check_size, finite, in_range, inside_span, non_negative, positive,
+};
 use crate::modal::{Derivative, ModalBasis, check_len, check_mode};
 
 /// A beam segment with constant section properties; segments follow each other from x = 0.
@@ -184,12 +187,36 @@ fn validate(
             reason: "at least one element",
         });
     }
+    // The dense eigen-solution holds about six n × n matrices of f64, n = 2 (elements + 1).
+    check_size(
+        "n_elements",
+        n_elements,
+        MAX_ELEMENTS,
+        "the dense eigen-solution",
+        |e| 48.0 * (2.0 * (e as f64 + 1.0)).powi(2),
+    )?;
     let mut length = 0.0;
     for s in sections {
-        length += positive("section length", s.length)?;
-        positive("bending_stiffness", s.bending_stiffness)?;
-        positive("mass_per_length", s.mass_per_length)?;
+        length += in_range(
+            "section length",
+            positive("section length", s.length)?,
+            LENGTH_RANGE,
+            "m",
+        )?;
+        in_range(
+            "bending_stiffness",
+            positive("bending_stiffness", s.bending_stiffness)?,
+            BENDING_STIFFNESS_RANGE,
+            "N m^2",
+        )?;
+        in_range(
+            "mass_per_length",
+            positive("mass_per_length", s.mass_per_length)?,
+            MASS_PER_LENGTH_RANGE,
+            "kg/m",
+        )?;
     }
+    in_range("length", length, LENGTH_RANGE, "m")?;
     for s in supports {
         inside_span("support position", s.x, length)?;
         if let SupportKind::Spring {

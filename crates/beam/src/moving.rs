@@ -16,7 +16,10 @@ use faer::{Mat, MatMut, MatRef};
 use integrate::structural::{StructuralMethod, StructuralStepper, StructuralSystem};
 
 use crate::damping::ModalDamping;
-use crate::error::{BeamError, finite, inside_span, non_negative, positive};
+use crate::error::{
+    BeamError, MAX_MODES, MEMORY_LIMIT_BYTES, check_size, finite, inside_span, non_negative,
+    positive,
+};
 use crate::modal::{Derivative, ModalBasis};
 use crate::sdof::PiecewiseLinearSdof;
 
@@ -428,7 +431,14 @@ pub fn simulate_moving_loads<B: ModalBasis + ?Sized>(
         });
     }
     let n = basis.n_modes();
+    // The structural stepper holds about eight n × n matrices.
+    check_size("n_modes", n, MAX_MODES, "the modal time integration", |n| {
+        64.0 * (n as f64).powi(2)
+    })?;
     let omegas = basis.circular_frequencies();
+    if let ModalIntegrator::Structural(method) = settings.integrator {
+        check_stability(method, dt, omegas)?;
+    }
     let mut ws = Workspace {
         q: vec![0.0; n],
         v: vec![0.0; n],
@@ -454,6 +464,18 @@ pub fn simulate_moving_loads<B: ModalBasis + ?Sized>(
     let n_steps = steps as usize;
     let n_samples = n_steps / settings.output_every + 2;
     let np = points.len();
+    // Five histories of n_samples × n_points f64, checked before they are allocated.
+    let output_bytes = 40.0 * n_samples as f64 * np.max(1) as f64;
+    if output_bytes > MEMORY_LIMIT_BYTES {
+        return Err(BeamError::TooLarge {
+            name: "output_every",
+            value: settings.output_every,
+            max: usize::MAX,
+            what: "the recorded time histories (5 × samples × points)",
+            bytes_required: output_bytes,
+            limit_bytes: MEMORY_LIMIT_BYTES,
+        });
+    }
     let mut out = MovingLoadResponse {
         points: points.to_vec(),
         times: Vec::with_capacity(n_samples),
@@ -509,4 +531,23 @@ pub fn simulate_moving_loads<B: ModalBasis + ?Sized>(
         }
     }
     Ok(out)
+}
+
+/// Refuse a step above the stability limit of a conditionally stable method
+/// ([`StructuralMethod::critical_step`]: 2/ω_max for central difference and Verlet) for the
+/// highest retained mode, before the run starts instead of failing mid-run with a non-finite
+/// state.
+fn check_stability(method: StructuralMethod, dt: f64, omegas: &[f64]) -> Result<(), BeamError> {
+    let omega_max = omegas.iter().copied().fold(0.0, f64::max);
+    if let Some(limit) = method.critical_step(omega_max)
+        && dt > limit
+    {
+        return Err(BeamError::StepAboveStabilityLimit {
+            method: method.name(),
+            dt,
+            limit,
+            omega_max,
+        });
+    }
+    Ok(())
 }

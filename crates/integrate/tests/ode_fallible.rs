@@ -14,15 +14,19 @@ struct ContactFailed {
 
 const T_FAIL: f64 = 0.35;
 
-#[allow(clippy::type_complexity)] // the closure type of the fallible right-hand side
-fn failing_rhs() -> FallibleRhs<impl FnMut(f64, &[f64], &mut [f64]) -> Result<(), ContactFailed>> {
-    FallibleRhs::new(1, |t: f64, _y: &[f64], dydt: &mut [f64]| {
-        if t > T_FAIL {
-            return Err(ContactFailed { gap: -1.25e-3 });
-        }
-        dydt[0] = 1.0;
-        Ok(())
-    })
+/// y' = 1 until t > T_FAIL, then the caller's error.
+fn failing(t: f64, _y: &[f64], dydt: &mut [f64]) -> Result<(), ContactFailed> {
+    if t > T_FAIL {
+        return Err(ContactFailed { gap: -1.25e-3 });
+    }
+    dydt[0] = 1.0;
+    Ok(())
+}
+
+type FailingFn = fn(f64, &[f64], &mut [f64]) -> Result<(), ContactFailed>;
+
+fn failing_rhs() -> FallibleRhs<FailingFn> {
+    FallibleRhs::new(1, failing as FailingFn)
 }
 
 fn run_until_error(stepper: &mut dyn OdeStepper, sys: &mut dyn OdeSystem) -> IntegrateError {

@@ -40,13 +40,19 @@
 
 mod first_order;
 mod force;
+mod hertz_impact;
+pub mod plan;
+mod result;
 mod second_order;
 
 use std::time::Instant;
 
 pub use force::{ContactForce, ElasticForce, hertz_constant};
 use halfspace::{Body, ContactError, Material};
+pub use hertz_impact::{CONTACT_TIME_FACTOR, HertzImpact};
 use integrate::{IntegrateError, Method, StructuralMethod};
+pub use plan::RunPlan;
+pub use result::{BallDropResult, Impact, RunStats, Sample};
 use thiserror::Error;
 
 /// Failure of a ball-drop simulation. `key` names the scenario-file key at fault.
@@ -406,6 +412,7 @@ impl BallDrop {
                 }
             }
         }
+        plan::check_ranges(self)?;
         let check = |key, body: Body| -> Result<(), BallDropError> {
             if let Body::Elastic { e, nu } = body {
                 Body::elastic(e, nu).map_err(|source| BallDropError::Material { key, source })?;
@@ -418,6 +425,13 @@ impl BallDrop {
             key: "[ball]/[surface]",
             source,
         })
+    }
+
+    /// `true` if the ball starts at the surface and is pressed into it at once (height 0 and
+    /// moving down, or at rest under gravity): the first impact starts at t = 0 with the
+    /// speed `−v₀`.
+    pub fn starts_in_contact(&self) -> bool {
+        self.height == 0.0 && (self.velocity < 0.0 || (self.velocity == 0.0 && self.gravity > 0.0))
     }
 
     /// Speed at the first impact, `√(v₀² + 2 g h)` for a ball moving down or at rest
@@ -467,13 +481,18 @@ impl BallDrop {
             }
         };
         let interval = self.output_interval.unwrap_or(self.duration / 2000.0);
+        let (run_plan, integrator) = plan::plan(self, k, &reference)?;
+        let planned = BallDrop {
+            integrator,
+            ..self.clone()
+        };
         let start = Instant::now();
-        let mut run = match self.integrator {
+        let mut run = match planned.integrator {
             Integrator::Ode { .. } => {
-                first_order::run(self, model, &reference, interval, record_series)?
+                first_order::run(&planned, model, &reference, interval, record_series)?
             }
             Integrator::Structural { .. } => {
-                second_order::run(self, model, interval, record_series)?
+                second_order::run(&planned, model, interval, record_series)?
             }
         };
         let wall_time_s = start.elapsed().as_secs_f64();
@@ -503,6 +522,21 @@ impl BallDrop {
         } else {
             Some(complete.iter().sum::<f64>() / complete.len() as f64)
         };
+        let step_ratio = step_ratio(&planned, &run_plan);
+        let mut accuracy_flags = Vec::new();
+        if energy_drift.is_nan() || energy_drift.abs() > plan::ENERGY_DRIFT_LIMIT {
+            accuracy_flags.push(format!(
+                "energy drift {energy_drift:.3e} exceeds {:.0e} of the impact energy",
+                plan::ENERGY_DRIFT_LIMIT
+            ));
+        }
+        if let Some(r) = step_ratio.filter(|r| *r > plan::STEP_RATIO_LIMIT) {
+            accuracy_flags.push(format!(
+                "step / contact time {r:.3e} exceeds {:.0e} (contact time {:.3e} s)",
+                plan::STEP_RATIO_LIMIT,
+                run_plan.contact_time
+            ));
+        }
         Ok(BallDropResult {
             samples: run.samples,
             impacts: run.impacts,
@@ -516,8 +550,26 @@ impl BallDrop {
             reference,
             hertz_constant: k,
             final_time: run.final_time,
+            plan: run_plan,
+            step_ratio,
+            accuracy_flags,
         })
     }
+}
+
+/// The step in contact over the contact time: the fixed step, or for the adaptive methods
+/// the contact guard's cap (`None` when there is no contact time scale).
+fn step_ratio(planned: &BallDrop, run_plan: &RunPlan) -> Option<f64> {
+    let tc = run_plan.contact_time;
+    if !(tc.is_finite() && tc > 0.0) {
+        return None;
+    }
+    let h = match (run_plan.contact_step, planned.integrator) {
+        (Some(h), _) => h,
+        (None, Integrator::Ode { guard_step, .. }) => guard_step.unwrap_or(tc / 50.0),
+        (None, Integrator::Structural { dt, .. }) => dt,
+    };
+    Some(h / tc)
 }
 
 /// Mass of a sphere of radius `r` \[m\] and density `rho` \[kg/m³\]: `(4/3)π r³ ρ`.
@@ -543,167 +595,6 @@ fn max_step_count(key: &'static str, duration: f64, dt: f64) -> Result<(), BallD
         ));
     }
     Ok(())
-}
-
-/// Hertz impact closed form (references.md §D1.4, references.md §C4.10; Johnson 1985 §11.4).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct HertzImpact {
-    /// Impact speed v \[m/s\].
-    pub impact_speed: f64,
-    /// Maximum approach δ* \[m\] from the energy balance
-    /// `(2/5) K δ*^{5/2} = ½ m v² + m g δ*` (g = 0: `δ* = (15 m v²/(16 E*√R))^{2/5}`).
-    pub max_approach: f64,
-    /// Peak force `F* = K δ*^{3/2}` \[N\].
-    pub peak_force: f64,
-    /// Contact duration without gravity, `t_c = (4/5) B(2/5, ½) δ₀*/v = 2.9432752 δ₀*/v`
-    /// with the gravity-free δ₀* \[s\]. (From `t_c = 2 ∫₀^{δ*} dδ / √(v² − (4K/5m) δ^{5/2})`;
-    /// gravity lengthens it by a relative O(m g/F*).)
-    pub contact_duration: f64,
-}
-
-/// `(4/5) B(2/5, 1/2)`: the Hertz contact-time constant (references.md §D1.4 gives 2.9432).
-pub const CONTACT_TIME_FACTOR: f64 = 2.943_275_184_324_705;
-
-impl HertzImpact {
-    /// The impact of mass `m` \[kg\] at speed `v` \[m/s\] on `F = K δ^{3/2}` under gravity `g`.
-    pub fn new(m: f64, k: f64, v: f64, g: f64) -> Self {
-        let free = (1.25 * m * v * v / k).powf(0.4);
-        // f(δ) = (2/5)Kδ^{5/2} − m g δ − ½ m v² is convex for δ > 0 with f(0) ≤ 0: one
-        // positive root, bracketed and found by bisection to round-off.
-        let f = |d: f64| 0.4 * k * d * d * d.sqrt() - m * g * d - 0.5 * m * v * v;
-        let mut hi = free.max((2.5 * m * g / k).powf(2.0 / 3.0)).max(1e-300) * 2.0;
-        while f(hi) <= 0.0 && hi.is_finite() {
-            hi *= 2.0;
-        }
-        let mut lo = 0.0;
-        for _ in 0..2000 {
-            let mid = 0.5 * (lo + hi);
-            if mid <= lo || mid >= hi {
-                break;
-            }
-            if f(mid) > 0.0 {
-                hi = mid;
-            } else {
-                lo = mid;
-            }
-        }
-        let delta = if v == 0.0 && g == 0.0 { 0.0 } else { hi };
-        Self {
-            impact_speed: v,
-            max_approach: delta,
-            peak_force: k * delta.powf(1.5),
-            contact_duration: if v > 0.0 {
-                CONTACT_TIME_FACTOR * free / v
-            } else {
-                f64::INFINITY
-            },
-        }
-    }
-}
-
-/// One recorded point of the time series.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Sample {
-    /// Time \[s\].
-    pub t: f64,
-    /// Height of the lowest point \[m\].
-    pub z: f64,
-    /// Velocity \[m/s\].
-    pub v: f64,
-    /// Acceleration `F/m − g` \[m/s²\].
-    pub a: f64,
-    /// Approach δ = max(0, −z) \[m\].
-    pub approach: f64,
-    /// Contact force F \[N\].
-    pub force: f64,
-    /// Total energy `½ m v² + m g z + W(δ) + D` \[J\].
-    pub energy: f64,
-}
-
-/// One impact.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Impact {
-    /// Contact start \[s\].
-    pub time: f64,
-    /// Speed at contact start \[m/s\] (positive).
-    pub impact_velocity: f64,
-    /// Largest approach \[m\], located inside the step by the dense output.
-    pub max_approach: f64,
-    /// Largest contact force \[N\], located inside the step by the dense output.
-    pub peak_force: f64,
-    /// Contact end − start \[s\] (`None` if the run ended in contact).
-    pub contact_duration: Option<f64>,
-    /// Upward speed at contact end \[m/s\].
-    pub rebound_velocity: Option<f64>,
-    /// `rebound_velocity / impact_velocity`.
-    pub restitution: Option<f64>,
-}
-
-impl Impact {
-    fn start(time: f64, speed: f64) -> Self {
-        Self {
-            time,
-            impact_velocity: speed,
-            max_approach: 0.0,
-            peak_force: 0.0,
-            contact_duration: None,
-            rebound_velocity: None,
-            restitution: None,
-        }
-    }
-}
-
-/// Run statistics.
-#[derive(Debug, Clone, PartialEq)]
-pub struct RunStats {
-    /// The method's name.
-    pub method: &'static str,
-    /// Accepted steps.
-    pub steps: usize,
-    /// Rejected steps.
-    pub rejected_steps: usize,
-    /// Right-hand side / internal force evaluations.
-    pub f_evals: usize,
-    /// Jacobian / tangent evaluations.
-    pub jacobian_evals: usize,
-    /// LU factorisations.
-    pub lu_decompositions: usize,
-    /// Newton iterations.
-    pub newton_iterations: usize,
-    /// Steps undone by the contact guard (first-order) or replaced by a landing step
-    /// (structural).
-    pub guard_retries: usize,
-    /// Half-space solves (BEM model).
-    pub contact_solves: usize,
-}
-
-/// Result of [`BallDrop::simulate`].
-#[derive(Debug, Clone, PartialEq)]
-pub struct BallDropResult {
-    /// Time series (every step in contact, free flight every `output_interval`).
-    pub samples: Vec<Sample>,
-    /// Impacts in time order.
-    pub impacts: Vec<Impact>,
-    /// Mean restitution over the completed impacts.
-    pub restitution: Option<f64>,
-    /// Initial energy E₀ \[J\] (potential energy measured from the surface).
-    pub initial_energy: f64,
-    /// `E_ref` \[J\].
-    pub energy_scale: f64,
-    /// `(E(t_end) − E₀)/E_ref`.
-    pub energy_drift: f64,
-    /// `max |E(t) − E₀|/E_ref` over the recorded samples.
-    pub energy_drift_max: Option<f64>,
-    /// Integrator counters.
-    pub stats: RunStats,
-    /// Wall time of the integration \[s\].
-    pub wall_time_s: f64,
-    /// Hertz closed form for the first impact.
-    pub reference: HertzImpact,
-    /// Hertz constant K of `F = K δ^{3/2}` \[N/m^{3/2}\].
-    pub hertz_constant: f64,
-    /// Time reached \[s\].
-    pub final_time: f64,
 }
 
 /// What a driver returns.

@@ -208,6 +208,26 @@ impl StructuralMethod {
         }
     }
 
+    /// The largest stable step for an undamped mode of circular frequency `omega_max`
+    /// \[rad/s\], or `None` for an unconditionally stable method. Linear stability of the
+    /// Newmark family (Hughes 2000, *The Finite Element Method* §9.1; references.md §D3.5):
+    /// with γ ≥ ½ the scheme is unconditionally stable for 2β ≥ γ, otherwise stable for
+    /// `Ω = ω Δt ≤ Ω_crit = 1/√(γ/2 − β)`, which is 2 for central difference (β = 0, γ = ½).
+    /// Störmer–Verlet and leapfrog are central difference in another form: `Δt ≤ 2/ω`.
+    /// HHT-α, generalized-α and backward Euler are unconditionally stable. Damping only
+    /// lowers the limit of the half-step-damped leapfrog slightly; the undamped limit is the
+    /// one checked.
+    pub fn critical_step(&self, omega_max: f64) -> Option<f64> {
+        let omega_crit = match *self {
+            Self::StormerVerlet | Self::Leapfrog => 2.0,
+            Self::Newmark { beta, gamma } if 2.0 * beta < gamma => {
+                1.0 / (0.5 * gamma - beta).sqrt()
+            }
+            _ => return None,
+        };
+        Some(omega_crit / omega_max)
+    }
+
     /// `true` for the explicit methods (Verlet, leapfrog, Newmark with β = 0): they have no
     /// nonlinear step equation.
     pub fn is_explicit(&self) -> bool {

@@ -191,7 +191,7 @@ pub(super) fn run(
 
     // Impacts from the events.
     let mut impacts: Vec<Impact> = Vec::new();
-    if scenario.height == 0.0 && scenario.velocity < 0.0 {
+    if scenario.starts_in_contact() {
         impacts.push(Impact::start(0.0, -scenario.velocity));
     }
     for ev in &sol.events {

@@ -96,7 +96,7 @@ pub(super) fn run(
     };
     let t_end = scenario.duration;
     let mut impacts: Vec<Impact> = Vec::new();
-    let mut in_contact = scenario.height == 0.0 && scenario.velocity < 0.0;
+    let mut in_contact = scenario.starts_in_contact();
     if in_contact {
         impacts.push(Impact::start(0.0, -scenario.velocity));
     }
