@@ -372,6 +372,11 @@ struct Work {
     df: Vec<f64>,
     cap: CapacitanceWork,
     dense: Vec<f64>,
+    /// Round-off bound of the step residual and its image under |A⁻¹| (n), and the contact
+    /// forces' floating-point floor per wheel (see `Simulation::force_floor`).
+    floor_residual: Vec<f64>,
+    floor_ainv_g: Vec<f64>,
+    force_floor: f64,
 }
 
 /// The contact-free linear structure (bridge modes and vehicle), for the stepper.
@@ -709,6 +714,9 @@ impl Simulation {
             df: vec![0.0; nw],
             cap: CapacitanceWork::new(n, nw),
             dense: Vec::new(),
+            floor_residual: vec![0.0; n],
+            floor_ainv_g: vec![0.0; n],
+            force_floor: 0.0,
         };
         let mut output_shapes = vec![0.0; m];
         scenario
@@ -1174,6 +1182,59 @@ impl Simulation {
         }
     }
 
+    /// The floating-point floor of the contact forces in this step, into `work.force_floor`
+    /// \[N\]: the largest over the wheels of
+    ///
+    /// ```text
+    /// F_floor,k = κ ε (|v_k|ᵀ |A⁻¹| e + |δ|_k) / (1/k_c + s |v_kᵀ A⁻¹ ĝ_k|),
+    /// e_i = |r_i| + |(A x)_i| + s |G_i|,   |δ|_k = |x_w| + Σ_j |q_j w_j(x_k)| + |r(x_k)|,
+    /// ```
+    ///
+    /// with ε the machine epsilon and κ = 32: the step residual R = A x − r − s G cannot be
+    /// computed more accurately than ε e (each entry is a sum of terms of size e_i), nor the
+    /// approach than ε |δ|_k, and one (quasi-)Newton force update maps such an error through the
+    /// same formula as a true residual (`linalg::contact_update`, one wheel). A force change
+    /// below it is round-off: for a 2.9e5 N moving mass at Δt = 2e-5 s it is of order 1e-2 N,
+    /// far above ε |F| because the step matrix A ~ m/(β Δt²) is large.
+    fn force_floor(&mut self, s: f64) {
+        let m = self.scenario.bridge.n_modes();
+        let w = &mut self.work;
+        let e = &mut w.floor_residual;
+        self.a_matrix.mul(&w.x, e);
+        for (i, ei) in e.iter_mut().enumerate() {
+            *ei = ei.abs() + w.r[i].abs();
+        }
+        for k in 0..self.laws.len() {
+            for j in 0..m {
+                e[j] += s * w.modal_load[k][j].abs();
+            }
+            e[self.wheel_dof[k]] += s * w.outputs[k].force.abs();
+        }
+        self.a_matrix.solve_abs_in_place(e);
+        let mut floor = 0.0f64;
+        for k in 0..self.laws.len() {
+            let iw = self.wheel_dof[k];
+            let shapes = &w.shape_at_wheel[k];
+            let approach_scale = w.x[iw].abs()
+                + (0..m).map(|j| (w.x[j] * shapes[j]).abs()).sum::<f64>()
+                + w.r_at_wheel[k].abs();
+            let propagated: f64 = w.v[k].iter().zip(e.iter()).map(|(v, y)| v.abs() * y).sum();
+            w.floor_ainv_g.copy_from_slice(&w.g_hat[k]);
+            self.a_matrix.solve_in_place(&mut w.floor_ainv_g);
+            let compliance = if self.laws[k].is_rigid() || w.outputs[k].stiffness <= 0.0 {
+                0.0
+            } else {
+                1.0 / w.outputs[k].stiffness
+            };
+            let den = compliance + s * linalg::dot(&w.v[k], &w.floor_ainv_g).abs();
+            if den > 0.0 && den.is_finite() {
+                let f = 32.0 * f64::EPSILON * (propagated + approach_scale) / den;
+                floor = floor.max(f);
+            }
+        }
+        w.force_floor = floor;
+    }
+
     /// One step attempt of size `dt`; on success the state is advanced.
     fn try_step(&mut self, dt: f64) -> Result<(), StepFailure> {
         let fatal = |e: VehicleBridgeError| StepFailure {
@@ -1226,6 +1287,8 @@ impl Simulation {
         let mut iterations = 0;
         let mut contact_iterations = 0;
         let mut growth = 0;
+        // The force changes of the two previous iterations (stagnation test).
+        let mut history = [f64::INFINITY; 2];
         // A rigid multiplier was clipped at zero in the last update (the state then does not
         // match the forces, so another iteration is needed).
         let mut clamped = false;
@@ -1270,10 +1333,17 @@ impl Simulation {
                         fatal: None,
                     });
                 }
-                if change <= tol && !clamped {
+                // Converged at the tolerance, or at the floating-point floor of the forces:
+                // below the floor the change is round-off (it stagnates instead of falling), so
+                // a change within the floor, or one that stopped decreasing over two iterations
+                // within 16× the floor, is convergence.
+                let floor = w.force_floor;
+                let stagnant = change <= 16.0 * floor && history[0].min(history[1]) <= change;
+                if (change <= tol.max(floor) || stagnant) && !clamped {
                     converged = true;
                     break;
                 }
+                history = [history[1], change];
             }
             for k in 0..nw {
                 w.prev_force[k] = w.outputs[k].force;
@@ -1290,6 +1360,10 @@ impl Simulation {
                 }
                 w.res[self.wheel_dof[k]] -= s * w.outputs[k].force;
             }
+            if it == 1 {
+                self.force_floor(s);
+            }
+            let w = &mut self.work;
             let ok = match solver {
                 CouplingSolver::Picard => {
                     self.a_matrix.solve_in_place(&mut w.res);
@@ -1389,7 +1463,7 @@ impl Simulation {
                     .iter()
                     .enumerate()
                     .all(|(a, &k)| w.outputs[k].force + w.df[a] > 0.0);
-                if predicted <= tol && all_positive {
+                if predicted <= tol.max(w.force_floor) && all_positive {
                     for (a, &k) in w.active.iter().enumerate() {
                         let f_old = w.outputs[k].force;
                         let f_new = if self.laws[k].is_rigid() {
@@ -1419,8 +1493,12 @@ impl Simulation {
                 iterations,
                 change,
                 reason: format!(
-                    "no convergence in {} iterations",
-                    self.scenario.coupling.max_iter
+                    "no convergence in {} iterations to the target force change {:e} N (coupling.tol = {:e} × the largest static wheel load {:e} N; floating-point floor of the forces {:e} N)",
+                    self.scenario.coupling.max_iter,
+                    tol,
+                    self.scenario.coupling.tol,
+                    self.force_scale,
+                    self.work.force_floor,
                 ),
                 fatal: None,
             });

@@ -100,18 +100,23 @@ fn summary_matches_the_step_history() {
     let max_abs = |v: &mut dyn Iterator<Item = f64>| v.fold(0.0f64, |m, x| m.max(x.abs()));
     let max_defl = max_abs(&mut defl.iter().map(|p| p.1));
     assert_eq!(summary.deflection.max_abs(), max_defl);
-    assert_eq!(summary.acceleration.max_abs(), max_abs(&mut acc.iter().copied()));
+    assert_eq!(
+        summary.acceleration.max_abs(),
+        max_abs(&mut acc.iter().copied())
+    );
     assert_eq!(summary.max_quasi_static_deflection, Some(max_qs));
     assert_eq!(summary.dynamic_amplification, Some(max_defl / max_qs));
-    let at_max = defl
-        .iter()
-        .fold((0.0, f64::NEG_INFINITY), |m, &p| if p.1 > m.1 { p } else { m });
+    let at_max = defl.iter().fold(
+        (0.0, f64::NEG_INFINITY),
+        |m, &p| if p.1 > m.1 { p } else { m },
+    );
     assert_eq!(summary.deflection.max.value, at_max.1);
     assert_eq!(summary.deflection.max.time, at_max.0);
     for (k, w) in summary.wheels.iter().enumerate() {
-        let hi = forces[k]
-            .iter()
-            .fold((0.0, f64::NEG_INFINITY), |m, &p| if p.1 > m.1 { p } else { m });
+        let hi = forces[k].iter().fold(
+            (0.0, f64::NEG_INFINITY),
+            |m, &p| if p.1 > m.1 { p } else { m },
+        );
         let lo = forces[k]
             .iter()
             .fold((0.0, f64::INFINITY), |m, &p| if p.1 < m.1 { p } else { m });
@@ -154,7 +159,10 @@ fn quasi_static_deflection_matches_closed_form() {
     let (qs, closed) = at_mid.unwrap();
     assert!((qs / closed - 1.0).abs() < 1.5e-4, "{qs} vs {closed}");
     let max_qs = summary.max_quasi_static_deflection.unwrap();
-    assert!((max_qs / closed - 1.0).abs() < 1.5e-4, "{max_qs} vs {closed}");
+    assert!(
+        (max_qs / closed - 1.0).abs() < 1.5e-4,
+        "{max_qs} vs {closed}"
+    );
     let daf = summary.dynamic_amplification.unwrap();
     assert!(daf > 1.0 && daf < 1.2, "DAF {daf}");
 }
