@@ -552,6 +552,9 @@ pub fn simulate_full(
         anyhow::Error::new(f.error).context(format!("step {step} of {steps}"))
     })?;
     bar.finish_and_clear();
+    for warning in &run.accuracy.warnings {
+        eprintln!("warning: {warning}");
+    }
     let wall = start.elapsed().as_secs_f64();
     let stats = run.solver;
     let summary = Summary {

@@ -82,11 +82,16 @@ pub use irregularity::{Irregularity, RandomProfile, TrackSpectrum};
 use linalg::{BlockDiagonal, CapacitanceWork, contact_update, dense_contact_update};
 pub use radau::Radau5Spec;
 pub use run::{
-    Extremum, NoObserver, Range, RunFailure, RunObserver, RunSummary, StepInfo, WheelSummary,
+    Accuracy, Extremum, NoObserver, Range, RunFailure, RunObserver, RunSummary, StepInfo,
+    WheelSummary,
 };
 
 /// Standard gravity [m/s²].
 pub const GRAVITY: f64 = 9.81;
+
+/// Most steps of Δt a run may plan (checked by [`Simulation::new`] before anything is
+/// allocated; about a day of wall time for the cheapest scenarios).
+pub const MAX_STEPS: f64 = 1e8;
 
 /// Errors of the vehicle–bridge simulation.
 #[derive(Debug, thiserror::Error)]
@@ -107,6 +112,9 @@ pub enum VehicleBridgeError {
     /// The half-space contact solver failed.
     #[error("contact solver: {0}")]
     Contact(#[from] ContactError),
+    /// The contact-free step matrix A has a singular (or non-finite) block at `dof`.
+    #[error("singular step matrix at DOF {dof}: {reason}")]
+    SingularStepMatrix { dof: usize, reason: String },
     /// The coupling iteration of a step failed even after step reduction.
     #[error(
         "coupling ({solver}) failed at t = {t:.6} s with step {dt:e} s after {halvings} step halvings: {reason} (last force change {change:e} N after {iterations} iterations)"
@@ -334,6 +342,8 @@ pub struct Simulation {
     loss_events: usize,
     /// Loss-of-contact events per wheel.
     wheel_loss_events: Vec<usize>,
+    /// Contact tangent dF/dδ at the static load per wheel [N/m] (0 for the rigid contact).
+    static_contact_stiffness: Vec<f64>,
     in_contact: Vec<bool>,
     /// DOFs of massless wheels (placeholder mass in the stepper; see `Simulation::new`).
     massless: Vec<usize>,
@@ -488,6 +498,27 @@ impl Simulation {
             return Err(invalid("duration", d, "must be positive"));
         }
         scenario.irregularity.validate()?;
+        {
+            // The step count is checked before anything is allocated or run.
+            let first = scenario
+                .wheels
+                .iter()
+                .map(|w| w.position)
+                .fold(f64::INFINITY, f64::min);
+            let end = scenario
+                .duration
+                .unwrap_or(((length - first) / scenario.speed).max(0.0));
+            let steps = end / scenario.dt;
+            if !(steps <= MAX_STEPS) {
+                return Err(invalid(
+                    "integrator.dt",
+                    scenario.dt,
+                    &format!(
+                        "the run of {end:e} s would take {steps:.3e} steps (limit {MAX_STEPS:e}); increase dt or shorten the duration"
+                    ),
+                ));
+            }
+        }
         {
             // A random profile is tabulated over the track the wheels (and their contact
             // grids, < 1 m) will cover, so each evaluation is one cubic instead of a sum of
@@ -741,6 +772,7 @@ impl Simulation {
             output_shapes,
             loss_events: 0,
             wheel_loss_events: vec![0; nw],
+            static_contact_stiffness: vec![0.0; nw],
             in_contact: vec![true; nw],
             massless,
             scenario,
@@ -770,6 +802,7 @@ impl Simulation {
                 self.laws[k].evaluate(delta, &zero, &mut cf, true)?
             };
             out.iterations = 0;
+            self.static_contact_stiffness[k] = out.stiffness;
             self.samples[k] = WheelSample {
                 position: x,
                 wheel_displacement: zw,
@@ -947,6 +980,30 @@ impl Simulation {
         self.scenario.wheels[k].position + self.scenario.speed * self.t()
     }
 
+    /// The step-size indicators of the scenario (module [`run`]): Δt times the highest
+    /// retained bridge frequency f_max = ω_max/2π, and Δt times the largest contact frequency
+    /// `f_c = √(k_c/m_w)/2π` of a wheel on its contact spring at the static load (`None` for
+    /// the rigid contact or massless wheels, which have no contact mode).
+    pub fn step_indicators(&self) -> (f64, Option<f64>) {
+        let dt = self.scenario.dt;
+        let two_pi = 2.0 * std::f64::consts::PI;
+        let omega_max = self
+            .scenario
+            .bridge
+            .circular_frequencies()
+            .iter()
+            .fold(0.0f64, |m, &w| m.max(w));
+        let contact = self
+            .scenario
+            .wheels
+            .iter()
+            .zip(&self.static_contact_stiffness)
+            .filter(|(w, k)| w.wheel_mass > 0.0 && **k > 0.0)
+            .map(|(w, &k)| dt * (k / w.wheel_mass).sqrt() / two_pi)
+            .fold(None, |m: Option<f64>, v| Some(m.map_or(v, |m| m.max(v))));
+        (dt * omega_max / two_pi, contact)
+    }
+
     /// Loss-of-contact events per wheel (their sum is
     /// [`loss_of_contact_events`](Self::loss_of_contact_events)).
     pub fn wheel_loss_of_contact_events(&self) -> &[usize] {
@@ -978,8 +1035,10 @@ impl Simulation {
         }
     }
 
-    /// Rebuilds the block-diagonal step matrix A if the step coefficients changed.
-    fn update_a(&mut self) {
+    /// Rebuilds the block-diagonal step matrix A if the step coefficients changed. A singular
+    /// block (e.g. a massless wheel without suspension in the step, or non-finite
+    /// coefficients) is an error naming the DOF, never silently dropped.
+    fn update_a(&mut self) -> Result<(), VehicleBridgeError> {
         let eq = &self.eq;
         let key = (
             eq.mass_coefficient,
@@ -987,9 +1046,10 @@ impl Simulation {
             eq.stiffness_coefficient,
         );
         if key == self.a_coefficients {
-            return;
+            return Ok(());
         }
-        self.a_coefficients = key;
+        // Invalidate first: a failed rebuild must not be reused by the next step.
+        self.a_coefficients = (f64::NAN, f64::NAN, f64::NAN);
         let (cm, cc, ck) = key;
         let s = &self.structure;
         let a = &mut self.a_matrix;
@@ -997,27 +1057,36 @@ impl Simulation {
         let entry = |i: usize, j: usize| {
             cm * s.mass[(i, j)] + cc * s.damping[(i, j)] + ck * s.stiffness[(i, j)]
         };
+        let singular = |dof: usize, what: &str| VehicleBridgeError::SingularStepMatrix {
+            dof,
+            reason: format!(
+                "the {what} block of A = {cm:e} M + {cc:e} C + {ck:e} K is singular or not finite"
+            ),
+        };
         let m = self.scenario.bridge.n_modes();
         for j in 0..m {
-            a.push1(j, entry(j, j));
-        }
-        for (k, &iw) in self.wheel_dof.iter().enumerate() {
-            match self.body_dof[k] {
-                None => {
-                    a.push1(iw, entry(iw, iw));
-                }
-                Some(ib) => {
-                    a.push2(
-                        iw,
-                        ib,
-                        entry(iw, iw),
-                        entry(iw, ib),
-                        entry(ib, iw),
-                        entry(ib, ib),
-                    );
-                }
+            if !a.push1(j, entry(j, j)) {
+                return Err(singular(j, "bridge-mode"));
             }
         }
+        for (k, &iw) in self.wheel_dof.iter().enumerate() {
+            let ok = match self.body_dof[k] {
+                None => a.push1(iw, entry(iw, iw)),
+                Some(ib) => a.push2(
+                    iw,
+                    ib,
+                    entry(iw, iw),
+                    entry(iw, ib),
+                    entry(ib, iw),
+                    entry(ib, ib),
+                ),
+            };
+            if !ok {
+                return Err(singular(iw, "wheel"));
+            }
+        }
+        self.a_coefficients = key;
+        Ok(())
     }
 
     /// Mode shapes and irregularity at the wheels and their contact columns at time `t`.
@@ -1256,7 +1325,7 @@ impl Simulation {
                 .sum();
             self.eq.history_force[iw] = self.eq.alpha_f * elastic;
         }
-        self.update_a();
+        self.update_a().map_err(fatal)?;
         let s = 1.0 - self.eq.alpha_f;
         let n = self.work.x.len();
         for i in 0..n {

@@ -260,3 +260,50 @@ fn defaults_work_from_one_kilogram_to_a_locomotive() {
         "{e}"
     );
 }
+
+/// Issue 9, item 3: absurd step counts are refused before anything runs (the message names
+/// `integrator.dt` and the step estimate), and every summary reports Δt·f of the contact mode
+/// and of the highest retained bridge mode, flagging an under-resolved contact with the dt
+/// that would resolve it. The contact frequency is checked against the Hertz tangent
+/// k_c = 3F/(2δ) at the static load (references.md §D4.2), computed here from the start approach.
+#[test]
+fn step_size_is_checked_against_the_shortest_time_scale() {
+    let wheel = WheelSpec {
+        position: 0.0,
+        wheel_mass: 600.0,
+        static_load: 1e5 - 600.0 * GRAVITY,
+        ..WheelSpec::default()
+    };
+    let e = match Simulation::new(scenario(vec![wheel], 30.0, 1e-10, 12)) {
+        Ok(_) => panic!("8.3e9 steps accepted"),
+        Err(e) => e.to_string(),
+    };
+    assert!(e.contains("integrator.dt") && e.contains("steps"), "{e}");
+
+    for (dt, flagged) in [(1e-3, true), (1e-4, false)] {
+        let mut sc = scenario(vec![wheel], 30.0, dt, 12);
+        sc.contact = ContactModel::Hertz;
+        sc.method = StructuralMethod::generalized_alpha(0.8).unwrap();
+        sc.duration = Some(0.02);
+        let mut sim = Simulation::new(sc).unwrap();
+        let delta = sim.wheels()[0].approach;
+        let k_c = 1.5 * 1e5 / delta;
+        let f_c = (k_c / 600.0).sqrt() / (2.0 * std::f64::consts::PI);
+        let summary = sim.run(|_| {}).unwrap();
+        let a = &summary.accuracy;
+        let c = a.dt_times_contact_frequency.unwrap();
+        assert!((c / (dt * f_c) - 1.0).abs() < 1e-9, "{c} vs {}", dt * f_c);
+        let f_max = basis(12).circular_frequencies()[11] / (2.0 * std::f64::consts::PI);
+        assert!((a.dt_times_highest_mode_frequency / (dt * f_max) - 1.0).abs() < 1e-12);
+        assert_eq!(
+            a.warnings.iter().any(|w| w.contains("contact mode")),
+            flagged,
+            "dt {dt}: {:?}",
+            a.warnings
+        );
+        println!(
+            "dt {dt}: dt·f_c = {c:.4}, dt·f_max = {:.4}, {:?}",
+            a.dt_times_highest_mode_frequency, a.warnings
+        );
+    }
+}

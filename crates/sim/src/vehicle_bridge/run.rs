@@ -142,6 +142,56 @@ pub struct RunSummary {
     pub loss_of_contact_events: usize,
     /// Coupling statistics.
     pub solver: SolverStats,
+    /// Step-size accuracy indicators and the warnings they raise.
+    pub accuracy: Accuracy,
+}
+
+/// Largest Δt·f_c of a contact mode for an accurate run: at least 10 steps per period of
+/// the wheel bouncing on its contact spring (the trapezoidal rule's period error is then
+/// below 3.3 %, references.md §D3.5).
+pub const MAX_DT_CONTACT: f64 = 0.1;
+
+/// Largest Δt·f_max of the highest retained bridge mode: above 1 that mode has less than
+/// one step per period, an implicit method filters it out (or, undamped, aliases it), and
+/// retaining it only costs time.
+pub const MAX_DT_MODE: f64 = 1.0;
+
+/// Accuracy indicators of a run (see [`Simulation::step_indicators`]). No energy-balance
+/// residual is reported: the coupled model has no closed energy balance in general (the
+/// horizontal force that keeps the speed constant does work on the sloped rail).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Accuracy {
+    /// Δt · f_max of the highest retained bridge mode.
+    pub dt_times_highest_mode_frequency: f64,
+    /// Largest Δt · f_c of a wheel's contact mode (`None` for the rigid contact).
+    pub dt_times_contact_frequency: Option<f64>,
+    /// Indicators above [`MAX_DT_CONTACT`] / [`MAX_DT_MODE`], each with the key and remedy.
+    pub warnings: Vec<String>,
+}
+
+impl Accuracy {
+    fn of(sim: &Simulation) -> Self {
+        let (mode, contact) = sim.step_indicators();
+        let dt = sim.scenario().dt;
+        let mut warnings = Vec::new();
+        if let Some(c) = contact.filter(|&c| c > MAX_DT_CONTACT) {
+            warnings.push(format!(
+                "the contact mode is under-resolved: integrator.dt = {dt:e} s gives dt·f_c = {c:.3} > {MAX_DT_CONTACT} (fewer than 10 steps per contact period); use dt <= {:.3e} s",
+                dt * MAX_DT_CONTACT / c
+            ));
+        }
+        if mode > MAX_DT_MODE {
+            warnings.push(format!(
+                "the highest retained bridge mode has dt·f_max = {mode:.3} > {MAX_DT_MODE} (less than one step per period): it is filtered by the integrator; use fewer bridge.modes or dt <= {:.3e} s",
+                dt * MAX_DT_MODE / mode
+            ));
+        }
+        Self {
+            dt_times_highest_mode_frequency: mode,
+            dt_times_contact_frequency: contact,
+            warnings,
+        }
+    }
 }
 
 impl RunSummary {
@@ -226,6 +276,7 @@ impl Recorder {
                 wheels,
                 loss_of_contact_events: sim.loss_of_contact_events(),
                 solver: sim.stats(),
+                accuracy: Accuracy::of(sim),
             },
         }
     }
