@@ -389,6 +389,21 @@ struct Work {
     force_floor: f64,
 }
 
+impl Work {
+    /// Bridge deflection under wheel k, `w(x_k) = Σ_j q_j w_j(x_k)` \[m\], at the state `x`
+    /// (mode shapes of the last [`Simulation::wheel_geometry`]).
+    fn deflection_under(&self, k: usize, x: &[f64]) -> f64 {
+        let shapes = &self.shape_at_wheel[k];
+        (0..shapes.len()).map(|j| x[j] * shapes[j]).sum()
+    }
+
+    /// The approach of wheel k, `δ_k = z_w − w(x_k) + r(x_k)` \[m\] (module documentation),
+    /// at the state `x`; `iw` is the wheel's DOF. The one place δ is computed.
+    fn approach(&self, k: usize, iw: usize, x: &[f64]) -> f64 {
+        x[iw] - self.deflection_under(k, x) + self.r_at_wheel[k]
+    }
+}
+
 /// The contact-free linear structure (bridge modes and vehicle), for the stepper.
 struct Structure {
     mass: Mat<f64>,
@@ -785,11 +800,12 @@ impl Simulation {
 
     /// Fills the samples at t = 0 (static state).
     fn initial_samples(&mut self) -> Result<(), VehicleBridgeError> {
+        self.wheel_geometry(self.stepper.t())?;
         for k in 0..self.scenario.wheels.len() {
             let x = self.scenario.wheels[k].position;
             let q = self.stepper.q().to_vec();
             let zw = q[self.wheel_dof[k]];
-            let delta = zw + self.scenario.irregularity.height(x);
+            let delta = self.work.approach(k, self.wheel_dof[k], &q);
             let mut out = if self.laws[k].is_rigid() {
                 ContactOutput {
                     force: self.static_loads[k],
@@ -1124,10 +1140,10 @@ impl Simulation {
         let w = &mut self.work;
         for k in 0..self.laws.len() {
             let iw = self.wheel_dof[k];
-            let shapes = &w.shape_at_wheel[k];
-            let defl: f64 = (0..m).map(|j| w.x[j] * shapes[j]).sum();
-            let delta = w.x[iw] - defl + w.r_at_wheel[k];
+            let defl = w.deflection_under(k, &w.x);
+            let delta = w.approach(k, iw, &w.x);
             w.delta[k] = delta;
+            let shapes = &w.shape_at_wheel[k];
             let law = &mut self.laws[k];
             let out = if law.is_rigid() {
                 let f = self.forces[k];
@@ -1200,9 +1216,8 @@ impl Simulation {
         }
         for k in 0..nw {
             let iw = self.wheel_dof[k];
+            let delta = w.approach(k, iw, &w.x);
             let shapes = &w.shape_at_wheel[k];
-            let defl: f64 = (0..m).map(|j| w.x[j] * shapes[j]).sum();
-            let delta = w.x[iw] - defl + w.r_at_wheel[k];
             let (f_n, k_n) = (w.outputs[k].force, w.outputs[k].stiffness);
             let force = f_n + k_n * (delta - w.delta[k]);
             if force <= 0.0 {
@@ -1549,7 +1564,7 @@ impl Simulation {
                             }
                         }
                         w.outputs[k].force = f_new;
-                        w.delta[k] = linalg::dot(&w.v[k], &w.x) + w.r_at_wheel[k];
+                        w.delta[k] = w.approach(k, self.wheel_dof[k], &w.x);
                     }
                     change = predicted;
                     converged = true;
