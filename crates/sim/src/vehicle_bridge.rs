@@ -345,8 +345,6 @@ pub struct Simulation {
     /// Contact tangent dF/dδ at the static load per wheel [N/m] (0 for the rigid contact).
     static_contact_stiffness: Vec<f64>,
     in_contact: Vec<bool>,
-    /// DOFs of massless wheels (placeholder mass in the stepper; see `Simulation::new`).
-    massless: Vec<usize>,
     /// Longitudinal friction (`None` = frictionless; see [`traction`]).
     traction: Option<traction::Traction>,
     /// The Radau5 path (`None` = the structural method of the scenario; see [`radau`]).
@@ -711,27 +709,10 @@ impl Simulation {
                 v0[ib] = -scenario.speed * slope;
             }
         }
-        // The stepper factorises M for the start acceleration and rejects a zero diagonal: a
-        // massless wheel DOF gets the placeholder mass 1 kg for its construction only. Its start
-        // acceleration is then (f_ext − C v − K q)_w / 1 = 0 (the static start balances the
-        // wheel row exactly), and the placeholder's α_m term in the step's history force is
-        // removed in `try_step` (`massless_history`); the step matrix A and the effective load
-        // use the true mass 0.
-        let massless: Vec<usize> = scenario
-            .wheels
-            .iter()
-            .zip(&wheel_dof)
-            .filter(|(w, _)| w.wheel_mass == 0.0)
-            .map(|(_, &iw)| iw)
-            .collect();
-        for &iw in &massless {
-            structure.mass[(iw, iw)] = 1.0;
-        }
-        let stepper = StructuralStepper::new(scenario.method, &mut structure, 0.0, &q0, &v0);
-        for &iw in &massless {
-            structure.mass[(iw, iw)] = 0.0;
-        }
-        let stepper = stepper?;
+        // A massless wheel's row and column of M are zero: the stepper treats it as a massless
+        // DOF (no inertia in its step row, start acceleration 0; the static start balances the
+        // wheel row exactly, so (f_ext − C v − K q)_w = 0 there as well).
+        let stepper = StructuralStepper::new(scenario.method, &mut structure, 0.0, &q0, &v0)?;
         let nw = scenario.wheels.len();
         let ncols: Vec<usize> = laws.iter().map(|l| l.columns().len()).collect();
         let work = Work {
@@ -789,7 +770,6 @@ impl Simulation {
             wheel_loss_events: vec![0; nw],
             static_contact_stiffness: vec![0.0; nw],
             in_contact: vec![true; nw],
-            massless,
             scenario,
             traction: None,
             radau: None,
@@ -1330,16 +1310,6 @@ impl Simulation {
         self.stepper
             .step_equation_into(dt, &mut self.eq)
             .map_err(|e| fatal(e.into()))?;
-        // Massless wheels: the stepper's history force holds α_m × (placeholder mass) × its
-        // start acceleration; the true row has no inertia, only α_f (K q_n + C v_n).
-        for &iw in &self.massless {
-            let (q, v) = (self.stepper.q(), self.stepper.v());
-            let st = &self.structure;
-            let elastic: f64 = (0..q.len())
-                .map(|j| st.stiffness[(iw, j)] * q[j] + st.damping[(iw, j)] * v[j])
-                .sum();
-            self.eq.history_force[iw] = self.eq.alpha_f * elastic;
-        }
         self.update_a().map_err(fatal)?;
         let s = 1.0 - self.eq.alpha_f;
         let n = self.work.x.len();
