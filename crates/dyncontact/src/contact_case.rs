@@ -11,7 +11,8 @@ use halfspace::{
     Body, ContactError, CoupledOptions, CoupledProblem, Creepages, ElementState, FastsimInput,
     GapShape, Grid, Hertz, LineHertz, Material, NormalLoad, NormalSolution, NormalSolver,
     RollingLoad, ShiftLoad, SolverOptions, TangentialOptions, TangentialSolution, TangentialSolver,
-    auto_grid, curvatures_from_radii, fastsim, linear_forces, solve_coupled,
+    TangentialStrategy, auto_grid, curvatures_from_radii, fastsim, linear_forces, solve_coupled,
+    tangential_strategy,
 };
 use serde::{Deserialize, Serialize};
 
@@ -62,26 +63,8 @@ pub struct KinematicsSpec {
     pub method: Option<String>,
 }
 
-/// How the tangential problem is solved.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum TangentialMethod {
-    /// The half-space solver (ConvexGS/SteadyGS).
-    Exact,
-    /// FASTSIM on the Hertz ellipse.
-    Fastsim,
-    /// Kalker's linear theory on the Hertz ellipse.
-    Linear,
-}
-
-impl TangentialMethod {
-    pub fn name(self) -> &'static str {
-        match self {
-            TangentialMethod::Exact => "exact",
-            TangentialMethod::Fastsim => "fastsim",
-            TangentialMethod::Linear => "linear",
-        }
-    }
-}
+/// How the tangential problem is solved (the library's one method enum).
+pub use halfspace::TangentialMethod;
 
 /// The tangential problem of a case.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -866,8 +849,7 @@ pub fn solve(case: &PreparedCase) -> Result<CaseOutcome> {
     let (solution, tangential_summary, tangential) = match &case.tangential {
         Some(t)
             if solution.converged
-                && t.method == TangentialMethod::Exact
-                && case.material.k != 0.0 =>
+                && tangential_strategy(t.method, &case.material) == TangentialStrategy::Coupled =>
         {
             // Dissimilar materials: alternate normal and tangential solves.
             let (n, s, e) = solve_coupled_case(case, t)?;

@@ -8,8 +8,9 @@ use std::time::Instant;
 
 use anyhow::{Result, anyhow, bail};
 use halfspace::{
-    ContactError, Creepages, NormalSolver, RollingLoad, TangentialOptions, TangentialSolver,
-    linear_forces,
+    ContactError, CoupledOptions, CoupledProblem, Creepages, NormalSolver, RollingLoad,
+    TangentialMethod, TangentialOptions, TangentialSolver, TangentialStrategy, linear_forces,
+    solve_coupled, tangential_strategy,
 };
 use serde::Serialize;
 
@@ -124,6 +125,10 @@ pub fn run(
     let axes = contact_case::hertz_axes(&case, normal.normal_force).ok();
     let mut solver = TangentialSolver::new(case.grid, case.material).map_err(|e| anyhow!("{e}"))?;
     let opts = TangentialOptions::default();
+    // The exact curve follows `contact`'s rule: with K != 0 every point is a coupled
+    // normal-tangential solve (the normal pressure changes with the tractions).
+    let coupled =
+        tangential_strategy(TangentialMethod::Exact, &case.material) == TangentialStrategy::Coupled;
     let mut points = Vec::with_capacity(values.len());
     let mut exact_time = 0.0;
     for &v in &values {
@@ -134,9 +139,24 @@ pub fn run(
             _ => c.phi = v,
         }
         let t0 = Instant::now();
-        let s = solver
-            .steady_rolling(&normal.pressure, mu, RollingLoad::Creepages(c), &opts)
-            .map_err(|e| anyhow!("exact solver at {} = {v:e}: {e}", flags[which]))?;
+        let load = RollingLoad::Creepages(c);
+        let s = if coupled {
+            solve_coupled(
+                &mut normal_solver,
+                &mut solver,
+                &case.gap,
+                case.load,
+                mu,
+                CoupledProblem::SteadyRolling(load),
+                &case.options,
+                &opts,
+                &CoupledOptions::default(),
+            )
+            .map(|c| c.tangential)
+        } else {
+            solver.steady_rolling(&normal.pressure, mu, load, &opts)
+        }
+        .map_err(|e| anyhow!("exact solver at {} = {v:e}: {e}", flags[which]))?;
         exact_time += t0.elapsed().as_secs_f64();
         let (mut fsx, mut fsy, mut lx, mut ly) = (None, None, None, None);
         if let Some((a, b)) = axes {

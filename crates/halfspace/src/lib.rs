@@ -13,7 +13,12 @@
 //! transient rolling — is solved on the same grid by [`TangentialSolver`] ([`tangential`];
 //! ConvexGS/SteadyGS, references.md §C3.5), with the normal–tangential coupling of dissimilar
 //! materials in [`coupled`]; the simplified theories are Kalker's linear theory
-//! ([`linear_theory`]) and FASTSIM ([`fastsim`](mod@fastsim)). User documentation: docs/tangential.md.
+//! ([`linear_theory`]) and FASTSIM ([`fastsim`](mod@fastsim)); [`strategy`] chooses between a
+//! coupled and a sequential solve. User documentation: docs/tangential.md.
+//!
+//! [`law`] packages the normal problem as force laws F(δ) a multibody code can embed (Hertz,
+//! the BEM solver at prescribed approach, damping as a decorator, rigid contact as a
+//! constraint); docs/contact_law.md.
 //!
 //! Units are SI: metres, newtons, pascals. Pressure is positive in compression; the
 //! approach is positive when the undeformed bodies overlap. Grids store element (ix, iy) at
@@ -40,10 +45,12 @@ pub mod gap;
 pub mod grid;
 pub mod hertz;
 pub mod influence;
+pub mod law;
 pub mod linear_theory;
 pub mod material;
 pub mod normcg;
 pub mod solution;
+pub mod strategy;
 pub mod tangential;
 
 pub use coupled::{
@@ -58,6 +65,7 @@ pub use linear_theory::{CreepCoefficients, creep_coefficients, linear_forces};
 pub use material::{Body, Material};
 pub use normcg::{NormalLoad, NormalSolver, SolverOptions};
 pub use solution::NormalSolution;
+pub use strategy::{TangentialMethod, TangentialStrategy, tangential_strategy};
 pub use tangential::{
     Creepages, ElementState, RollingLoad, ShiftLoad, StepMotion, TangentialOptions,
     TangentialSolution, TangentialSolver,

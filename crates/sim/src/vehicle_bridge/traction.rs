@@ -35,43 +35,15 @@
 
 use halfspace::{
     Creepages, FastsimInput, Grid, Material, StepMotion, TangentialOptions, TangentialSolver,
-    creep_coefficients, fastsim,
+    TangentialStrategy, creep_coefficients, fastsim, tangential_strategy,
 };
 
 use super::contact::{ContactGeometry, ContactLaw, HertzLaw};
 use super::{VehicleBridgeError, WheelSample};
 
-/// The tangential method of the traction computation (module documentation).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum TractionMethod {
-    /// Transient rolling on the BEM grid (bem contact only).
-    Exact,
-    /// FASTSIM on the Hertz ellipse.
-    Fastsim,
-    /// Kalker's linear theory, capped at μ F_n.
-    Linear,
-}
-
-impl TractionMethod {
-    /// `exact`, `fastsim` or `linear`.
-    pub fn by_name(name: &str) -> Option<Self> {
-        match name.trim().to_ascii_lowercase().as_str() {
-            "exact" => Some(Self::Exact),
-            "fastsim" => Some(Self::Fastsim),
-            "linear" => Some(Self::Linear),
-            _ => None,
-        }
-    }
-
-    /// The scenario-file name.
-    pub fn name(&self) -> &'static str {
-        match self {
-            Self::Exact => "exact",
-            Self::Fastsim => "fastsim",
-            Self::Linear => "linear",
-        }
-    }
-}
+/// The tangential method of the traction computation (module documentation): halfspace's
+/// one method enum.
+pub use halfspace::TangentialMethod as TractionMethod;
 
 /// What drives or brakes the wheels.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -199,6 +171,15 @@ impl Traction {
     ) -> Result<Self, VehicleBridgeError> {
         spec.validate()?;
         let material = geometry.material()?;
+        // Wheel and rail share E and nu (K = 0): halfspace's rule gives the sequential solve
+        // (normal by the contact law, then tangential), which is what `update` does.
+        if tangential_strategy(spec.method, &material) == TangentialStrategy::Coupled {
+            return Err(bad(
+                "traction.method",
+                f64::NAN,
+                "dissimilar wheel and rail materials (K != 0) need the coupled normal-tangential solve, which the traction model does not do",
+            ));
+        }
         let hertz = HertzLaw::new(geometry)?;
         let n = laws.len();
         let mut solvers = Vec::with_capacity(n);

@@ -1,0 +1,327 @@
+//! The boundary-element (half-space) contact law: NormCG at prescribed approach.
+
+use super::{ContactLaw, LawOutput, check_columns};
+use crate::error::{ContactError, positive};
+use crate::gap::{GapShape, auto_grid};
+use crate::grid::Grid;
+use crate::material::Material;
+use crate::normcg::{NormalLoad, NormalSolver, SolverOptions};
+
+/// When `evaluate(…, tangent = false)` runs the sensitivity solve for dF/dδ.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TangentPolicy {
+    /// Only when asked; otherwise the previous tangent (0 before the first) is returned.
+    Requested,
+    /// When asked, or when there is no previous tangent yet (quasi-Newton iterations that
+    /// reuse the tangent of a step's first evaluation).
+    RequestedOrMissing,
+}
+
+/// Settings of a [`BemLaw`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BemOptions {
+    /// NormCG settings (`sensitivity` is set per call from the tangent policy).
+    pub solver: SolverOptions,
+    /// When the tangent is computed.
+    pub tangent: TangentPolicy,
+    /// Return the previous result without a solve when δ and the column corrections are
+    /// unchanged (and a tangent is there if one is asked for).
+    pub memoize: bool,
+    /// Return zero without a solve when δ ≤ min h (no element can touch). Without it only
+    /// δ ≤ 0 returns zero at once; for 0 < δ ≤ min h the solver runs (and its warm start
+    /// restarts from the zero pressure).
+    pub skip_separated: bool,
+}
+
+impl Default for BemOptions {
+    /// NormCG tolerance 1e-8, 500 iterations, tangent when asked, memoized, separated
+    /// states skipped.
+    fn default() -> Self {
+        BemOptions {
+            solver: SolverOptions {
+                max_iter: 500,
+                ..SolverOptions::default()
+            },
+            tangent: TangentPolicy::Requested,
+            memoize: true,
+            skip_separated: true,
+        }
+    }
+}
+
+/// The half-space contact law (references.md §C3.3): on a fixed grid with the undeformed gap
+/// h_e = h₀(x_e, y_e) + c(ξ_i) (the law's base gap plus the caller's column correction of the
+/// element's column i), NormCG solves for the pressure p ≥ 0 at the prescribed approach δ,
+/// warm-started from the previous call.
+///
+/// * F = ΔA Σ p_e; k = dF/dδ from the solver's linearised sensitivity solve on the contact set;
+/// * W = ½ ΔA Σ p_e u_e (Clapeyron), u = A p. For a fixed gap this equals ∫₀^δ F dδ' exactly for
+///   the discrete problem: by the envelope theorem on min_{p ≥ 0} ½ pᵀA p − Σ p_e(δ − h_e),
+///   d(½ΔA pᵀA p)/dδ = ΔA Σ p_e = F.
+#[derive(Debug)]
+pub struct BemLaw {
+    solver: NormalSolver,
+    options: BemOptions,
+    grid: Grid,
+    base_gap: Vec<f64>,
+    gap: Vec<f64>,
+    pressure: Vec<f64>,
+    columns: Vec<f64>,
+    last_column_gap: Vec<f64>,
+    last: Option<(f64, LawOutput)>,
+    last_stiffness: Option<f64>,
+    column_force: Vec<f64>,
+    solves: usize,
+}
+
+impl BemLaw {
+    /// A law on `grid` with the base gap `base_gap` \[m\] (one value per element, x fastest).
+    pub fn new(
+        grid: Grid,
+        material: Material,
+        base_gap: Vec<f64>,
+        options: BemOptions,
+    ) -> Result<Self, ContactError> {
+        if base_gap.len() != grid.len() {
+            return Err(ContactError::SizeMismatch {
+                name: "base_gap",
+                expected: grid.len(),
+                found: base_gap.len(),
+            });
+        }
+        positive("tol", options.solver.tol)?;
+        positive("sensitivity_tol", options.solver.sensitivity_tol)?;
+        let solver = NormalSolver::new(grid, material)?;
+        let n = grid.len();
+        Ok(Self {
+            solver,
+            options,
+            grid,
+            gap: base_gap.clone(),
+            base_gap,
+            pressure: vec![0.0; n],
+            columns: (0..grid.nx).map(|ix| grid.x(ix)).collect(),
+            last_column_gap: Vec::with_capacity(grid.nx),
+            last: None,
+            last_stiffness: None,
+            column_force: vec![0.0; grid.nx],
+            solves: 0,
+        })
+    }
+
+    /// A law for a point-contact `shape` on the automatic `elements × elements` grid sized for
+    /// `max_load` ([`auto_grid`]), with the sampled gap of the shape.
+    pub fn from_shape(
+        shape: &GapShape,
+        material: Material,
+        max_load: NormalLoad,
+        elements: usize,
+        options: BemOptions,
+    ) -> Result<Self, ContactError> {
+        let grid = auto_grid(shape, &material, max_load, elements)?;
+        let gap = shape.sample(&grid)?;
+        Self::new(grid, material, gap, options)
+    }
+
+    /// A wheel (rolling radius R_w) on a rail head (transverse radius R_r) on an n × n grid
+    /// centred on the wheel with half-widths 1.25 × the Hertz semi-axes at `max_force` \[N\]:
+    /// h(ξ, y) = R_w − √(R_w² − ξ²) + R_r − √(R_r² − y²) (exact circles).
+    pub fn wheel_on_rail(
+        wheel_radius: f64,
+        rail_profile_radius: f64,
+        material: Material,
+        n: usize,
+        max_force: f64,
+        options: BemOptions,
+    ) -> Result<Self, ContactError> {
+        let (rw, rr) = (
+            positive("wheel_radius", wheel_radius)?,
+            positive("rail_profile_radius", rail_profile_radius)?,
+        );
+        let hertz =
+            crate::hertz::Hertz::elliptic(0.5 / rw, 0.5 / rr, material.e_star, max_force.max(1.0))?;
+        let (hx, hy) = (1.25 * hertz.a, 1.25 * hertz.b);
+        if n == 0 {
+            return Err(ContactError::InvalidParameter {
+                name: "n",
+                value: 0.0,
+                reason: "the grid needs at least one element per direction",
+            });
+        }
+        let grid = Grid::centred(n, n, 2.0 * hx / n as f64, 2.0 * hy / n as f64, 0.0, 0.0)?;
+        let gap =
+            grid.sample(|x, y| (rw - (rw * rw - x * x).sqrt()) + (rr - (rr * rr - y * y).sqrt()));
+        Self::new(grid, material, gap, options)
+    }
+
+    /// The grid (x along the rolling direction, centred on the contact point).
+    pub fn grid(&self) -> &Grid {
+        &self.grid
+    }
+
+    /// The base gap h₀ \[m\] per element.
+    pub fn base_gap(&self) -> &[f64] {
+        &self.base_gap
+    }
+
+    /// Number of NormCG solves so far.
+    pub fn solves(&self) -> usize {
+        self.solves
+    }
+
+    /// Number of FFT convolutions so far.
+    pub fn convolutions(&self) -> usize {
+        self.solver.convolutions()
+    }
+
+    /// The settings.
+    pub fn options(&self) -> &BemOptions {
+        &self.options
+    }
+
+    fn set_gap(&mut self, column_gap: &[f64]) -> f64 {
+        let nx = self.grid.nx;
+        let mut min_gap = f64::INFINITY;
+        if column_gap.is_empty() {
+            self.gap.copy_from_slice(&self.base_gap);
+            min_gap = self.gap.iter().copied().fold(min_gap, f64::min);
+        } else {
+            for (k, (g, b)) in self.gap.iter_mut().zip(&self.base_gap).enumerate() {
+                *g = b + column_gap[k % nx];
+                min_gap = min_gap.min(*g);
+            }
+        }
+        min_gap
+    }
+
+    fn memo_hit(&self, delta: f64, column_gap: &[f64], tangent: bool) -> Option<LawOutput> {
+        if !self.options.memoize {
+            return None;
+        }
+        let (d, out) = self.last?;
+        let same_gap = column_gap == self.last_column_gap.as_slice()
+            || (column_gap.is_empty() && self.last_column_gap.iter().all(|c| *c == 0.0));
+        (d == delta && same_gap && (!tangent || out.tangent_fresh)).then_some(out)
+    }
+}
+
+impl ContactLaw for BemLaw {
+    fn name(&self) -> &'static str {
+        "bem"
+    }
+
+    fn columns(&self) -> &[f64] {
+        &self.columns
+    }
+
+    fn evaluate(
+        &mut self,
+        delta: f64,
+        column_gap: &[f64],
+        column_force: &mut [f64],
+        tangent: bool,
+    ) -> Result<LawOutput, ContactError> {
+        check_columns(self.grid.nx, column_gap, column_force)?;
+        crate::error::finite("approach", delta)?;
+        if let Some(out) = self.memo_hit(delta, column_gap, tangent) {
+            column_force.copy_from_slice(&self.column_force[..column_force.len()]);
+            return Ok(out);
+        }
+        let min_gap = self.set_gap(column_gap);
+        self.last_column_gap.clear();
+        self.last_column_gap.extend_from_slice(column_gap);
+        let separated = if self.options.skip_separated {
+            min_gap
+        } else {
+            0.0
+        };
+        if delta <= separated {
+            self.pressure.fill(0.0);
+            self.column_force.fill(0.0);
+            column_force.fill(0.0);
+            let out = LawOutput {
+                tangent_fresh: true,
+                ..LawOutput::default()
+            };
+            self.last = Some((delta, out));
+            return Ok(out);
+        }
+        let sensitivity = match self.options.tangent {
+            TangentPolicy::Requested => tangent,
+            TangentPolicy::RequestedOrMissing => {
+                tangent || self.last_stiffness.is_none_or(|k| k <= 0.0)
+            }
+        };
+        let options = SolverOptions {
+            sensitivity,
+            ..self.options.solver
+        };
+        let solution = self
+            .solver
+            .solve(&self.gap, NormalLoad::Approach(delta), &options)?;
+        self.solves += 1;
+        let (stiffness, tangent_fresh) = match solution.dfn_dapproach {
+            Some(k) if sensitivity => {
+                self.last_stiffness = Some(k);
+                (k, true)
+            }
+            _ => (self.last_stiffness.unwrap_or(0.0), false),
+        };
+        let area = self.grid.element_area();
+        let nx = self.grid.nx;
+        self.column_force.fill(0.0);
+        for (k, p) in solution.pressure.iter().enumerate() {
+            self.column_force[k % nx] += p * area;
+        }
+        column_force.copy_from_slice(&self.column_force[..column_force.len()]);
+        let work: f64 = solution
+            .pressure
+            .iter()
+            .zip(&solution.displacement)
+            .map(|(p, u)| p * u)
+            .sum();
+        let (a, b) = if solution.elements_in_contact > 0 {
+            solution.patch_half_widths()
+        } else {
+            (0.0, 0.0)
+        };
+        self.pressure.copy_from_slice(&solution.pressure);
+        let out = LawOutput {
+            force: solution.normal_force,
+            stiffness,
+            tangent_fresh,
+            energy: 0.5 * area * work,
+            patch_length: 2.0 * a,
+            patch_width: 2.0 * b,
+            max_pressure: solution.max_pressure,
+            iterations: solution.iterations,
+        };
+        self.last = Some((delta, out));
+        Ok(out)
+    }
+
+    /// NormCG at prescribed force on the base gap (no column corrections), with the
+    /// settings' `solver` options as given (including their `sensitivity`).
+    fn static_approach(&mut self, force: f64) -> Result<f64, ContactError> {
+        self.gap.copy_from_slice(&self.base_gap);
+        self.last = None;
+        let solution =
+            self.solver
+                .solve(&self.gap, NormalLoad::Force(force), &self.options.solver)?;
+        self.solves += 1;
+        self.pressure.copy_from_slice(&solution.pressure);
+        Ok(solution.approach)
+    }
+
+    fn pressure_field(&self) -> Option<(&Grid, &[f64])> {
+        Some((&self.grid, &self.pressure))
+    }
+
+    fn centreline_pressure(&self, out: &mut Vec<(f64, f64)>) {
+        out.clear();
+        let (nx, iy) = (self.grid.nx, self.grid.ny / 2);
+        for ix in 0..nx {
+            out.push((self.grid.x(ix), self.pressure[iy * nx + ix]));
+        }
+    }
+}
