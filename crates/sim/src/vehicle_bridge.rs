@@ -313,6 +313,9 @@ pub struct SolverStats {
     pub contact_iterations: usize,
     /// Step attempts that failed and were retried with half the step.
     pub failed_steps: usize,
+    /// Largest floating-point floor of the contact forces met in a step \[N\] (the
+    /// convergence test's floor; module documentation of the coupling).
+    pub max_force_floor: f64,
 }
 
 /// The simulation: state, stepper and work space.
@@ -1258,7 +1261,7 @@ impl Simulation {
     /// computed more accurately than ε e (each entry is a sum of terms of size e_i), nor the
     /// approach than ε |δ|_k, and one (quasi-)Newton force update maps such an error through the
     /// same formula as a true residual (`linalg::contact_update`, one wheel). A force change
-    /// below it is round-off: for a 2.9e5 N moving mass at Δt = 2e-5 s it is of order 1e-2 N,
+    /// below it is round-off: for a 2.8e5 N moving mass at Δt = 2e-5 s it is 2.9e-2 N,
     /// far above ε |F| because the step matrix A ~ m/(β Δt²) is large.
     fn force_floor(&mut self, s: f64) {
         let m = self.scenario.bridge.n_modes();
@@ -1578,6 +1581,7 @@ impl Simulation {
         self.stats.iterations += iterations;
         self.stats.max_iterations = self.stats.max_iterations.max(iterations);
         self.stats.contact_iterations += contact_iterations;
+        self.stats.max_force_floor = self.stats.max_force_floor.max(self.work.force_floor);
         let q = self.stepper.q();
         let a = self.stepper.a();
         for k in 0..nw {
