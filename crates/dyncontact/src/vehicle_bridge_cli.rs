@@ -533,7 +533,7 @@ pub fn simulate_full(
     // The run driver steps the simulation and computes the summary (maxima, amplification);
     // this observer records the time series and the pressure snapshots.
     let mut observer = |sim: &Simulation, info: run::StepInfo| {
-        if info.step % every == 0 || info.step == info.steps {
+        if info.step.is_multiple_of(every) || info.step == info.steps {
             record(sim, &mut rows, info.iterations);
         }
         let x = sim.wheel_position(0);
@@ -542,7 +542,7 @@ pub fn simulate_full(
             snaps.push((x, buf.clone()));
             next_snap += 1;
         }
-        if info.step % 64 == 0 {
+        if info.step.is_multiple_of(64) {
             bar.set_position(info.step as u64);
         }
         std::ops::ControlFlow::Continue(())

@@ -14,6 +14,7 @@ struct ContactFailed {
 
 const T_FAIL: f64 = 0.35;
 
+#[allow(clippy::type_complexity)] // the closure type is the point of the test
 fn failing_rhs() -> FallibleRhs<impl FnMut(f64, &[f64], &mut [f64]) -> Result<(), ContactFailed>> {
     FallibleRhs::new(1, |t: f64, _y: &[f64], dydt: &mut [f64]| {
         if t > T_FAIL {

@@ -525,7 +525,7 @@ impl Simulation {
                 .duration
                 .unwrap_or(((length - first) / scenario.speed).max(0.0));
             let steps = end / scenario.dt;
-            if !(steps <= MAX_STEPS) {
+            if steps.is_nan() || steps > MAX_STEPS {
                 return Err(invalid(
                     "integrator.dt",
                     scenario.dt,
