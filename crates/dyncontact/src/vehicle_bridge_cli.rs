@@ -547,7 +547,7 @@ pub fn simulate_full(
         }
         std::ops::ControlFlow::Continue(())
     };
-    let run = run::run(&mut sim, &mut observer).map_err(|f| {
+    let run = run::run_sampled(&mut sim, &mut observer, every).map_err(|f| {
         let step = f.partial.steps_taken + 1;
         anyhow::Error::new(f.error).context(format!("step {step} of {steps}"))
     })?;

@@ -185,3 +185,48 @@ fn observer_stops_the_run() {
     assert!((summary.time_reached - 40.0 * 2.5e-4).abs() < 1e-15);
     assert_eq!(summary.time_reached, sim.t());
 }
+
+/// `run_sampled(…, every)` takes the extrema at t = 0, every `every`-th step and the last step
+/// (the rows of a time series recorded every `every` steps), the quasi-static deflection at
+/// every step.
+#[test]
+fn sampled_summary_matches_the_recorded_rows() {
+    let every = 7;
+    let mut sim = Simulation::new(scenario()).unwrap();
+    let mut rows = vec![sim.output_point_response().0];
+    let mut forces = vec![sim.wheels()[0].contact.force];
+    let mut max_qs = 0.0f64;
+    let summary = run::run_sampled(
+        &mut sim,
+        &mut |s: &Simulation, info: StepInfo| {
+            if info.step % every == 0 || info.step == info.steps {
+                rows.push(s.output_point_response().0);
+                forces.push(s.wheels()[0].contact.force);
+            }
+            max_qs = max_qs.max(s.quasi_static_output_deflection().unwrap().unwrap().abs());
+            ControlFlow::Continue(())
+        },
+        every,
+    )
+    .unwrap();
+    let max_abs = rows.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    assert_eq!(summary.deflection.max_abs(), max_abs);
+    assert_eq!(summary.max_quasi_static_deflection, Some(max_qs));
+    assert_eq!(
+        summary.wheels[0].force.min.value,
+        forces.iter().fold(f64::INFINITY, |m, &f| m.min(f))
+    );
+    assert_eq!(
+        summary.wheels[0].force.max.value,
+        forces.iter().fold(f64::NEG_INFINITY, |m, &f| m.max(f))
+    );
+    assert!(summary.completed);
+    // Sub-sampling can only miss extrema: the all-step run bounds it.
+    let mut sim = Simulation::new(scenario()).unwrap();
+    let all = run::run(&mut sim, &mut run::NoObserver).unwrap();
+    assert!(all.deflection.max_abs() >= summary.deflection.max_abs());
+    assert_eq!(
+        all.max_quasi_static_deflection,
+        summary.max_quasi_static_deflection
+    );
+}
