@@ -199,7 +199,7 @@ fn sampled_summary_matches_the_recorded_rows() {
     let summary = run::run_sampled(
         &mut sim,
         &mut |s: &Simulation, info: StepInfo| {
-            if info.step % every == 0 || info.step == info.steps {
+            if info.step.is_multiple_of(every) || info.step == info.steps {
                 rows.push(s.output_point_response().0);
                 forces.push(s.wheels()[0].contact.force);
             }
