@@ -206,6 +206,9 @@ pub fn simulate_full(
         None => None,
     };
     bar.finish_and_clear();
+    for warning in &run.accuracy.warnings {
+        eprintln!("warning: {warning}");
+    }
     let wall = start.elapsed().as_secs_f64();
     let stats = run.solver;
     let rows = recorder.finish()?;

@@ -82,11 +82,16 @@ pub use irregularity::{Irregularity, RandomProfile, TrackSpectrum};
 use linalg::{BlockDiagonal, CapacitanceWork, contact_update, dense_contact_update};
 pub use radau::Radau5Spec;
 pub use run::{
-    Extremum, NoObserver, Range, RunFailure, RunObserver, RunSummary, StepInfo, WheelSummary,
+    Accuracy, Extremum, NoObserver, Range, RunFailure, RunObserver, RunSummary, StepInfo,
+    WheelSummary,
 };
 
 /// Standard gravity [m/s²].
 pub const GRAVITY: f64 = 9.81;
+
+/// Most steps of Δt a run may plan (checked by [`Simulation::new`] before anything is
+/// allocated; about a day of wall time for the cheapest scenarios).
+pub const MAX_STEPS: f64 = 1e8;
 
 /// Errors of the vehicle–bridge simulation.
 #[derive(Debug, thiserror::Error)]
@@ -107,6 +112,9 @@ pub enum VehicleBridgeError {
     /// The half-space contact solver failed.
     #[error("contact solver: {0}")]
     Contact(#[from] ContactError),
+    /// The contact-free step matrix A has a singular (or non-finite) block at `dof`.
+    #[error("singular step matrix at DOF {dof}: {reason}")]
+    SingularStepMatrix { dof: usize, reason: String },
     /// The coupling iteration of a step failed even after step reduction.
     #[error(
         "coupling ({solver}) failed at t = {t:.6} s with step {dt:e} s after {halvings} step halvings: {reason} (last force change {change:e} N after {iterations} iterations)"
@@ -305,6 +313,9 @@ pub struct SolverStats {
     pub contact_iterations: usize,
     /// Step attempts that failed and were retried with half the step.
     pub failed_steps: usize,
+    /// Largest floating-point floor of the contact forces met in a step \[N\] (the
+    /// convergence test's floor; module documentation of the coupling).
+    pub max_force_floor: f64,
 }
 
 /// The simulation: state, stepper and work space.
@@ -334,9 +345,9 @@ pub struct Simulation {
     loss_events: usize,
     /// Loss-of-contact events per wheel.
     wheel_loss_events: Vec<usize>,
+    /// Contact tangent dF/dδ at the static load per wheel [N/m] (0 for the rigid contact).
+    static_contact_stiffness: Vec<f64>,
     in_contact: Vec<bool>,
-    /// DOFs of massless wheels (placeholder mass in the stepper; see `Simulation::new`).
-    massless: Vec<usize>,
     /// Longitudinal friction (`None` = frictionless; see [`traction`]).
     traction: Option<traction::Traction>,
     /// The Radau5 path (`None` = the structural method of the scenario; see [`radau`]).
@@ -372,6 +383,26 @@ struct Work {
     df: Vec<f64>,
     cap: CapacitanceWork,
     dense: Vec<f64>,
+    /// Round-off bound of the step residual and its image under |A⁻¹| (n), and the contact
+    /// forces' floating-point floor per wheel (see `Simulation::force_floor`).
+    floor_residual: Vec<f64>,
+    floor_ainv_g: Vec<f64>,
+    force_floor: f64,
+}
+
+impl Work {
+    /// Bridge deflection under wheel k, `w(x_k) = Σ_j q_j w_j(x_k)` \[m\], at the state `x`
+    /// (mode shapes of the last [`Simulation::wheel_geometry`]).
+    fn deflection_under(&self, k: usize, x: &[f64]) -> f64 {
+        let shapes = &self.shape_at_wheel[k];
+        (0..shapes.len()).map(|j| x[j] * shapes[j]).sum()
+    }
+
+    /// The approach of wheel k, `δ_k = z_w − w(x_k) + r(x_k)` \[m\] (module documentation),
+    /// at the state `x`; `iw` is the wheel's DOF. The one place δ is computed.
+    fn approach(&self, k: usize, iw: usize, x: &[f64]) -> f64 {
+        x[iw] - self.deflection_under(k, x) + self.r_at_wheel[k]
+    }
 }
 
 /// The contact-free linear structure (bridge modes and vehicle), for the stepper.
@@ -483,6 +514,27 @@ impl Simulation {
             return Err(invalid("duration", d, "must be positive"));
         }
         scenario.irregularity.validate()?;
+        {
+            // The step count is checked before anything is allocated or run.
+            let first = scenario
+                .wheels
+                .iter()
+                .map(|w| w.position)
+                .fold(f64::INFINITY, f64::min);
+            let end = scenario
+                .duration
+                .unwrap_or(((length - first) / scenario.speed).max(0.0));
+            let steps = end / scenario.dt;
+            if steps.is_nan() || steps > MAX_STEPS {
+                return Err(invalid(
+                    "integrator.dt",
+                    scenario.dt,
+                    &format!(
+                        "the run of {end:e} s would take {steps:.3e} steps (limit {MAX_STEPS:e}); increase dt or shorten the duration"
+                    ),
+                ));
+            }
+        }
         {
             // A random profile is tabulated over the track the wheels (and their contact
             // grids, < 1 m) will cover, so each evaluation is one cubic instead of a sum of
@@ -660,27 +712,10 @@ impl Simulation {
                 v0[ib] = -scenario.speed * slope;
             }
         }
-        // The stepper factorises M for the start acceleration and rejects a zero diagonal: a
-        // massless wheel DOF gets the placeholder mass 1 kg for its construction only. Its start
-        // acceleration is then (f_ext − C v − K q)_w / 1 = 0 (the static start balances the
-        // wheel row exactly), and the placeholder's α_m term in the step's history force is
-        // removed in `try_step` (`massless_history`); the step matrix A and the effective load
-        // use the true mass 0.
-        let massless: Vec<usize> = scenario
-            .wheels
-            .iter()
-            .zip(&wheel_dof)
-            .filter(|(w, _)| w.wheel_mass == 0.0)
-            .map(|(_, &iw)| iw)
-            .collect();
-        for &iw in &massless {
-            structure.mass[(iw, iw)] = 1.0;
-        }
-        let stepper = StructuralStepper::new(scenario.method, &mut structure, 0.0, &q0, &v0);
-        for &iw in &massless {
-            structure.mass[(iw, iw)] = 0.0;
-        }
-        let stepper = stepper?;
+        // A massless wheel's row and column of M are zero: the stepper treats it as a massless
+        // DOF (no inertia in its step row, start acceleration 0; the static start balances the
+        // wheel row exactly, so (f_ext − C v − K q)_w = 0 there as well).
+        let stepper = StructuralStepper::new(scenario.method, &mut structure, 0.0, &q0, &v0)?;
         let nw = scenario.wheels.len();
         let ncols: Vec<usize> = laws.iter().map(|l| l.columns().len()).collect();
         let work = Work {
@@ -709,6 +744,9 @@ impl Simulation {
             df: vec![0.0; nw],
             cap: CapacitanceWork::new(n, nw),
             dense: Vec::new(),
+            floor_residual: vec![0.0; n],
+            floor_ainv_g: vec![0.0; n],
+            force_floor: 0.0,
         };
         let mut output_shapes = vec![0.0; m];
         scenario
@@ -733,8 +771,8 @@ impl Simulation {
             output_shapes,
             loss_events: 0,
             wheel_loss_events: vec![0; nw],
+            static_contact_stiffness: vec![0.0; nw],
             in_contact: vec![true; nw],
-            massless,
             scenario,
             traction: None,
             radau: None,
@@ -745,11 +783,12 @@ impl Simulation {
 
     /// Fills the samples at t = 0 (static state).
     fn initial_samples(&mut self) -> Result<(), VehicleBridgeError> {
+        self.wheel_geometry(self.stepper.t())?;
         for k in 0..self.scenario.wheels.len() {
             let x = self.scenario.wheels[k].position;
             let q = self.stepper.q().to_vec();
             let zw = q[self.wheel_dof[k]];
-            let delta = zw + self.scenario.irregularity.height(x);
+            let delta = self.work.approach(k, self.wheel_dof[k], &q);
             let mut out = if self.laws[k].is_rigid() {
                 ContactOutput {
                     force: self.static_loads[k],
@@ -762,6 +801,7 @@ impl Simulation {
                 self.laws[k].evaluate(delta, &zero, &mut cf, true)?
             };
             out.iterations = 0;
+            self.static_contact_stiffness[k] = out.stiffness;
             self.samples[k] = WheelSample {
                 position: x,
                 wheel_displacement: zw,
@@ -939,6 +979,30 @@ impl Simulation {
         self.scenario.wheels[k].position + self.scenario.speed * self.t()
     }
 
+    /// The step-size indicators of the scenario (module [`run`]): Δt times the highest
+    /// retained bridge frequency f_max = ω_max/2π, and Δt times the largest contact frequency
+    /// `f_c = √(k_c/m_w)/2π` of a wheel on its contact spring at the static load (`None` for
+    /// the rigid contact or massless wheels, which have no contact mode).
+    pub fn step_indicators(&self) -> (f64, Option<f64>) {
+        let dt = self.scenario.dt;
+        let two_pi = 2.0 * std::f64::consts::PI;
+        let omega_max = self
+            .scenario
+            .bridge
+            .circular_frequencies()
+            .iter()
+            .fold(0.0f64, |m, &w| m.max(w));
+        let contact = self
+            .scenario
+            .wheels
+            .iter()
+            .zip(&self.static_contact_stiffness)
+            .filter(|(w, k)| w.wheel_mass > 0.0 && **k > 0.0)
+            .map(|(w, &k)| dt * (k / w.wheel_mass).sqrt() / two_pi)
+            .fold(None, |m: Option<f64>, v| Some(m.map_or(v, |m| m.max(v))));
+        (dt * omega_max / two_pi, contact)
+    }
+
     /// Loss-of-contact events per wheel (their sum is
     /// [`loss_of_contact_events`](Self::loss_of_contact_events)).
     pub fn wheel_loss_of_contact_events(&self) -> &[usize] {
@@ -970,8 +1034,10 @@ impl Simulation {
         }
     }
 
-    /// Rebuilds the block-diagonal step matrix A if the step coefficients changed.
-    fn update_a(&mut self) {
+    /// Rebuilds the block-diagonal step matrix A if the step coefficients changed. A singular
+    /// block (e.g. a massless wheel without suspension in the step, or non-finite
+    /// coefficients) is an error naming the DOF, never silently dropped.
+    fn update_a(&mut self) -> Result<(), VehicleBridgeError> {
         let eq = &self.eq;
         let key = (
             eq.mass_coefficient,
@@ -979,9 +1045,10 @@ impl Simulation {
             eq.stiffness_coefficient,
         );
         if key == self.a_coefficients {
-            return;
+            return Ok(());
         }
-        self.a_coefficients = key;
+        // Invalidate first: a failed rebuild must not be reused by the next step.
+        self.a_coefficients = (f64::NAN, f64::NAN, f64::NAN);
         let (cm, cc, ck) = key;
         let s = &self.structure;
         let a = &mut self.a_matrix;
@@ -989,27 +1056,36 @@ impl Simulation {
         let entry = |i: usize, j: usize| {
             cm * s.mass[(i, j)] + cc * s.damping[(i, j)] + ck * s.stiffness[(i, j)]
         };
+        let singular = |dof: usize, what: &str| VehicleBridgeError::SingularStepMatrix {
+            dof,
+            reason: format!(
+                "the {what} block of A = {cm:e} M + {cc:e} C + {ck:e} K is singular or not finite"
+            ),
+        };
         let m = self.scenario.bridge.n_modes();
         for j in 0..m {
-            a.push1(j, entry(j, j));
-        }
-        for (k, &iw) in self.wheel_dof.iter().enumerate() {
-            match self.body_dof[k] {
-                None => {
-                    a.push1(iw, entry(iw, iw));
-                }
-                Some(ib) => {
-                    a.push2(
-                        iw,
-                        ib,
-                        entry(iw, iw),
-                        entry(iw, ib),
-                        entry(ib, iw),
-                        entry(ib, ib),
-                    );
-                }
+            if !a.push1(j, entry(j, j)) {
+                return Err(singular(j, "bridge-mode"));
             }
         }
+        for (k, &iw) in self.wheel_dof.iter().enumerate() {
+            let ok = match self.body_dof[k] {
+                None => a.push1(iw, entry(iw, iw)),
+                Some(ib) => a.push2(
+                    iw,
+                    ib,
+                    entry(iw, iw),
+                    entry(iw, ib),
+                    entry(ib, iw),
+                    entry(ib, ib),
+                ),
+            };
+            if !ok {
+                return Err(singular(iw, "wheel"));
+            }
+        }
+        self.a_coefficients = key;
+        Ok(())
     }
 
     /// Mode shapes and irregularity at the wheels and their contact columns at time `t`.
@@ -1047,10 +1123,10 @@ impl Simulation {
         let w = &mut self.work;
         for k in 0..self.laws.len() {
             let iw = self.wheel_dof[k];
-            let shapes = &w.shape_at_wheel[k];
-            let defl: f64 = (0..m).map(|j| w.x[j] * shapes[j]).sum();
-            let delta = w.x[iw] - defl + w.r_at_wheel[k];
+            let defl = w.deflection_under(k, &w.x);
+            let delta = w.approach(k, iw, &w.x);
             w.delta[k] = delta;
+            let shapes = &w.shape_at_wheel[k];
             let law = &mut self.laws[k];
             let out = if law.is_rigid() {
                 let f = self.forces[k];
@@ -1123,9 +1199,8 @@ impl Simulation {
         }
         for k in 0..nw {
             let iw = self.wheel_dof[k];
+            let delta = w.approach(k, iw, &w.x);
             let shapes = &w.shape_at_wheel[k];
-            let defl: f64 = (0..m).map(|j| w.x[j] * shapes[j]).sum();
-            let delta = w.x[iw] - defl + w.r_at_wheel[k];
             let (f_n, k_n) = (w.outputs[k].force, w.outputs[k].stiffness);
             let force = f_n + k_n * (delta - w.delta[k]);
             if force <= 0.0 {
@@ -1174,6 +1249,59 @@ impl Simulation {
         }
     }
 
+    /// The floating-point floor of the contact forces in this step, into `work.force_floor`
+    /// \[N\]: the largest over the wheels of
+    ///
+    /// ```text
+    /// F_floor,k = κ ε (|v_k|ᵀ |A⁻¹| e + |δ|_k) / (1/k_c + s |v_kᵀ A⁻¹ ĝ_k|),
+    /// e_i = |r_i| + |(A x)_i| + s |G_i|,   |δ|_k = |x_w| + Σ_j |q_j w_j(x_k)| + |r(x_k)|,
+    /// ```
+    ///
+    /// with ε the machine epsilon and κ = 32: the step residual R = A x − r − s G cannot be
+    /// computed more accurately than ε e (each entry is a sum of terms of size e_i), nor the
+    /// approach than ε |δ|_k, and one (quasi-)Newton force update maps such an error through the
+    /// same formula as a true residual (`linalg::contact_update`, one wheel). A force change
+    /// below it is round-off: for a 2.8e5 N moving mass at Δt = 2e-5 s it is 2.9e-2 N,
+    /// far above ε |F| because the step matrix A ~ m/(β Δt²) is large.
+    fn force_floor(&mut self, s: f64) {
+        let m = self.scenario.bridge.n_modes();
+        let w = &mut self.work;
+        let e = &mut w.floor_residual;
+        self.a_matrix.mul(&w.x, e);
+        for (i, ei) in e.iter_mut().enumerate() {
+            *ei = ei.abs() + w.r[i].abs();
+        }
+        for k in 0..self.laws.len() {
+            for j in 0..m {
+                e[j] += s * w.modal_load[k][j].abs();
+            }
+            e[self.wheel_dof[k]] += s * w.outputs[k].force.abs();
+        }
+        self.a_matrix.solve_abs_in_place(e);
+        let mut floor = 0.0f64;
+        for k in 0..self.laws.len() {
+            let iw = self.wheel_dof[k];
+            let shapes = &w.shape_at_wheel[k];
+            let approach_scale = w.x[iw].abs()
+                + (0..m).map(|j| (w.x[j] * shapes[j]).abs()).sum::<f64>()
+                + w.r_at_wheel[k].abs();
+            let propagated: f64 = w.v[k].iter().zip(e.iter()).map(|(v, y)| v.abs() * y).sum();
+            w.floor_ainv_g.copy_from_slice(&w.g_hat[k]);
+            self.a_matrix.solve_in_place(&mut w.floor_ainv_g);
+            let compliance = if self.laws[k].is_rigid() || w.outputs[k].stiffness <= 0.0 {
+                0.0
+            } else {
+                1.0 / w.outputs[k].stiffness
+            };
+            let den = compliance + s * linalg::dot(&w.v[k], &w.floor_ainv_g).abs();
+            if den > 0.0 && den.is_finite() {
+                let f = 32.0 * f64::EPSILON * (propagated + approach_scale) / den;
+                floor = floor.max(f);
+            }
+        }
+        w.force_floor = floor;
+    }
+
     /// One step attempt of size `dt`; on success the state is advanced.
     fn try_step(&mut self, dt: f64) -> Result<(), StepFailure> {
         let fatal = |e: VehicleBridgeError| StepFailure {
@@ -1185,17 +1313,7 @@ impl Simulation {
         self.stepper
             .step_equation_into(dt, &mut self.eq)
             .map_err(|e| fatal(e.into()))?;
-        // Massless wheels: the stepper's history force holds α_m × (placeholder mass) × its
-        // start acceleration; the true row has no inertia, only α_f (K q_n + C v_n).
-        for &iw in &self.massless {
-            let (q, v) = (self.stepper.q(), self.stepper.v());
-            let st = &self.structure;
-            let elastic: f64 = (0..q.len())
-                .map(|j| st.stiffness[(iw, j)] * q[j] + st.damping[(iw, j)] * v[j])
-                .sum();
-            self.eq.history_force[iw] = self.eq.alpha_f * elastic;
-        }
-        self.update_a();
+        self.update_a().map_err(fatal)?;
         let s = 1.0 - self.eq.alpha_f;
         let n = self.work.x.len();
         for i in 0..n {
@@ -1226,6 +1344,8 @@ impl Simulation {
         let mut iterations = 0;
         let mut contact_iterations = 0;
         let mut growth = 0;
+        // The force changes of the two previous iterations (stagnation test).
+        let mut history = [f64::INFINITY; 2];
         // A rigid multiplier was clipped at zero in the last update (the state then does not
         // match the forces, so another iteration is needed).
         let mut clamped = false;
@@ -1270,10 +1390,17 @@ impl Simulation {
                         fatal: None,
                     });
                 }
-                if change <= tol && !clamped {
+                // Converged at the tolerance, or at the floating-point floor of the forces:
+                // below the floor the change is round-off (it stagnates instead of falling), so
+                // a change within the floor, or one that stopped decreasing over two iterations
+                // within 16× the floor, is convergence.
+                let floor = w.force_floor;
+                let stagnant = change <= 16.0 * floor && history[0].min(history[1]) <= change;
+                if (change <= tol.max(floor) || stagnant) && !clamped {
                     converged = true;
                     break;
                 }
+                history = [history[1], change];
             }
             for k in 0..nw {
                 w.prev_force[k] = w.outputs[k].force;
@@ -1290,6 +1417,10 @@ impl Simulation {
                 }
                 w.res[self.wheel_dof[k]] -= s * w.outputs[k].force;
             }
+            if it == 1 {
+                self.force_floor(s);
+            }
+            let w = &mut self.work;
             let ok = match solver {
                 CouplingSolver::Picard => {
                     self.a_matrix.solve_in_place(&mut w.res);
@@ -1389,7 +1520,7 @@ impl Simulation {
                     .iter()
                     .enumerate()
                     .all(|(a, &k)| w.outputs[k].force + w.df[a] > 0.0);
-                if predicted <= tol && all_positive {
+                if predicted <= tol.max(w.force_floor) && all_positive {
                     for (a, &k) in w.active.iter().enumerate() {
                         let f_old = w.outputs[k].force;
                         let f_new = if self.laws[k].is_rigid() {
@@ -1406,7 +1537,7 @@ impl Simulation {
                             }
                         }
                         w.outputs[k].force = f_new;
-                        w.delta[k] = linalg::dot(&w.v[k], &w.x) + w.r_at_wheel[k];
+                        w.delta[k] = w.approach(k, self.wheel_dof[k], &w.x);
                     }
                     change = predicted;
                     converged = true;
@@ -1419,8 +1550,12 @@ impl Simulation {
                 iterations,
                 change,
                 reason: format!(
-                    "no convergence in {} iterations",
-                    self.scenario.coupling.max_iter
+                    "no convergence in {} iterations to the target force change {:e} N (coupling.tol = {:e} × the largest static wheel load {:e} N; floating-point floor of the forces {:e} N)",
+                    self.scenario.coupling.max_iter,
+                    tol,
+                    self.scenario.coupling.tol,
+                    self.force_scale,
+                    self.work.force_floor,
                 ),
                 fatal: None,
             });
@@ -1446,6 +1581,7 @@ impl Simulation {
         self.stats.iterations += iterations;
         self.stats.max_iterations = self.stats.max_iterations.max(iterations);
         self.stats.contact_iterations += contact_iterations;
+        self.stats.max_force_floor = self.stats.max_force_floor.max(self.work.force_floor);
         let q = self.stepper.q();
         let a = self.stepper.a();
         for k in 0..nw {

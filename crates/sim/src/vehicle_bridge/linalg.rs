@@ -82,6 +82,20 @@ impl BlockDiagonal {
         }
     }
 
+    /// `x ← |A⁻¹| x` in place, with the entrywise absolute value of each block's inverse (a
+    /// bound on how an error vector of x's magnitudes propagates through a solve).
+    pub fn solve_abs_in_place(&self, x: &mut [f64]) {
+        for &(i, j, inv) in &self.blocks {
+            if j == NONE {
+                x[i] *= inv[0].abs();
+            } else {
+                let (xi, xj) = (x[i], x[j]);
+                x[i] = inv[0].abs() * xi + inv[1].abs() * xj;
+                x[j] = inv[2].abs() * xi + inv[3].abs() * xj;
+            }
+        }
+    }
+
     /// `y = A x`.
     pub fn mul(&self, x: &[f64], y: &mut [f64]) {
         for (&(i, j, _), e) in self.blocks.iter().zip(&self.entries) {

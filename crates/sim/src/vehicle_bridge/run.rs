@@ -4,8 +4,8 @@
 //! the quasi-static deflection, the contact-force extrema per wheel, the loss-of-contact
 //! events and the solver statistics.
 //!
-//! The extrema are taken over every accepted step of the scenario's Δt and the start state
-//! (t = 0), independently of how often a caller records its time series.
+//! [`run`] takes the extrema over every accepted step of the scenario's Δt and the start state
+//! (t = 0); [`run_sampled`] over the steps a time series recorded every n-th step holds.
 //!
 //! Dynamic amplification (references.md §D1.5): `DAF = max_t |w(x_out, t)| / max_t |w_qs(x_out, t)|`
 //! with the quasi-static deflection `w_qs` of [`Simulation::quasi_static_output_deflection`]
@@ -142,6 +142,56 @@ pub struct RunSummary {
     pub loss_of_contact_events: usize,
     /// Coupling statistics.
     pub solver: SolverStats,
+    /// Step-size accuracy indicators and the warnings they raise.
+    pub accuracy: Accuracy,
+}
+
+/// Largest Δt·f_c of a contact mode for an accurate run: at least 10 steps per period of
+/// the wheel bouncing on its contact spring (the trapezoidal rule's period error is then
+/// below 3.3 %, references.md §D3.5).
+pub const MAX_DT_CONTACT: f64 = 0.1;
+
+/// Largest Δt·f_max of the highest retained bridge mode: above 1 that mode has less than
+/// one step per period, an implicit method filters it out (or, undamped, aliases it), and
+/// retaining it only costs time.
+pub const MAX_DT_MODE: f64 = 1.0;
+
+/// Accuracy indicators of a run (see [`Simulation::step_indicators`]). No energy-balance
+/// residual is reported: the coupled model has no closed energy balance in general (the
+/// horizontal force that keeps the speed constant does work on the sloped rail).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Accuracy {
+    /// Δt · f_max of the highest retained bridge mode.
+    pub dt_times_highest_mode_frequency: f64,
+    /// Largest Δt · f_c of a wheel's contact mode (`None` for the rigid contact).
+    pub dt_times_contact_frequency: Option<f64>,
+    /// Indicators above [`MAX_DT_CONTACT`] / [`MAX_DT_MODE`], each with the key and remedy.
+    pub warnings: Vec<String>,
+}
+
+impl Accuracy {
+    fn of(sim: &Simulation) -> Self {
+        let (mode, contact) = sim.step_indicators();
+        let dt = sim.scenario().dt;
+        let mut warnings = Vec::new();
+        if let Some(c) = contact.filter(|&c| c > MAX_DT_CONTACT) {
+            warnings.push(format!(
+                "the contact mode is under-resolved: integrator.dt = {dt:e} s gives dt·f_c = {c:.3} > {MAX_DT_CONTACT} (fewer than 10 steps per contact period); use dt <= {:.3e} s",
+                dt * MAX_DT_CONTACT / c
+            ));
+        }
+        if mode > MAX_DT_MODE {
+            warnings.push(format!(
+                "the highest retained bridge mode has dt·f_max = {mode:.3} > {MAX_DT_MODE} (less than one step per period): it is filtered by the integrator; use fewer bridge.modes or dt <= {:.3e} s",
+                dt * MAX_DT_MODE / mode
+            ));
+        }
+        Self {
+            dt_times_highest_mode_frequency: mode,
+            dt_times_contact_frequency: contact,
+            warnings,
+        }
+    }
 }
 
 impl RunSummary {
@@ -226,38 +276,41 @@ impl Recorder {
                 wheels,
                 loss_of_contact_events: sim.loss_of_contact_events(),
                 solver: sim.stats(),
+                accuracy: Accuracy::of(sim),
             },
         }
     }
 
-    fn record(&mut self, sim: &Simulation) -> Result<(), VehicleBridgeError> {
+    /// Records the step just taken: the quasi-static deflection, the time, the events and
+    /// the statistics at every step; the response and force extrema only when `sampled`.
+    fn record(&mut self, sim: &Simulation, sampled: bool) -> Result<(), VehicleBridgeError> {
         let s = &mut self.summary;
         let t = sim.t();
-        let (d, _, a) = sim.output_point_response();
-        s.deflection.update(d, t);
-        s.acceleration.update(a, t);
         if let Some(qs) = sim.quasi_static_output_deflection()? {
             s.max_quasi_static_deflection =
                 Some(s.max_quasi_static_deflection.unwrap_or(0.0).max(qs.abs()));
         }
-        for ((w, sample), &events) in s
-            .wheels
-            .iter_mut()
-            .zip(sim.wheels())
-            .zip(sim.wheel_loss_of_contact_events())
-        {
+        s.time_reached = t;
+        s.steps_taken += 1;
+        s.loss_of_contact_events = sim.loss_of_contact_events();
+        s.solver = sim.stats();
+        for (w, &events) in s.wheels.iter_mut().zip(sim.wheel_loss_of_contact_events()) {
+            w.loss_of_contact_events = events;
+        }
+        if !sampled {
+            return Ok(());
+        }
+        let (d, _, a) = sim.output_point_response();
+        s.deflection.update(d, t);
+        s.acceleration.update(a, t);
+        for (w, sample) in s.wheels.iter_mut().zip(sim.wheels()) {
             w.force.update(sample.contact.force, t);
             w.max_pressure = w.max_pressure.max(sample.contact.max_pressure.abs());
             w.max_body_acceleration = w.max_body_acceleration.max(sample.body_acceleration.abs());
             w.max_wheel_acceleration = w
                 .max_wheel_acceleration
                 .max(sample.wheel_acceleration.abs());
-            w.loss_of_contact_events = events;
         }
-        s.time_reached = t;
-        s.steps_taken += 1;
-        s.loss_of_contact_events = sim.loss_of_contact_events();
-        s.solver = sim.stats();
         Ok(())
     }
 
@@ -278,6 +331,20 @@ impl Recorder {
 /// [`ControlFlow::Break`]. A step that fails returns the error with the summary up to the last
 /// accepted step.
 pub fn run(sim: &mut Simulation, observer: &mut dyn RunObserver) -> Result<RunSummary, RunFailure> {
+    run_sampled(sim, observer, 1)
+}
+
+/// [`run`] with the response and force extrema taken at the start, every `every`-th step and
+/// the last step only (the instants a time series recorded every `every` steps holds; the
+/// CLI's `[output] every`), so that the summary describes the recorded series. The
+/// quasi-static deflection (and so the DAF's denominator) is still taken at every step.
+/// `every = 0` is treated as 1.
+pub fn run_sampled(
+    sim: &mut Simulation,
+    observer: &mut dyn RunObserver,
+    every: usize,
+) -> Result<RunSummary, RunFailure> {
+    let every = every.max(1);
     let steps = sim.planned_steps();
     let mut recorder = Recorder::new(sim, steps);
     if observer.start(sim).is_break() {
@@ -285,7 +352,8 @@ pub fn run(sim: &mut Simulation, observer: &mut dyn RunObserver) -> Result<RunSu
     }
     for step in 1..=steps {
         let before = sim.stats().iterations;
-        let stepped = sim.step().and_then(|()| recorder.record(sim));
+        let sampled = step.is_multiple_of(every) || step == steps;
+        let stepped = sim.step().and_then(|()| recorder.record(sim, sampled));
         if let Err(error) = stepped {
             return Err(RunFailure {
                 error,
