@@ -121,7 +121,7 @@ fn solve_orego(method: Method, rtol: f64) -> f64 {
     err
 }
 
-/// references.md: assert about 1e-10 relative with rtol ≤ 1e-10. Measured 5–7e-11 (VDPOL),
+/// references.md §D3.1: assert about 1e-10 relative with rtol ≤ 1e-10. Measured 5–7e-11 (VDPOL),
 /// 8.3e-12 (ROBER), and at rtol 1e-12 3.4e-11 (HIRES) and 1.1e-11 (OREGO); HIRES reaches
 /// 1.8e-9 at rtol 1e-10: RADAU5's tolerance transformation rtol' = 0.1·rtol^{2/3} lets the
 /// global error exceed rtol there.

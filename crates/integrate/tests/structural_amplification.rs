@@ -238,7 +238,7 @@ fn newmark_linear_acceleration_is_unstable_at_high_frequency() {
 }
 
 /// Closed-form spectral radius of central difference / Verlet for u'' + u = 0 (references.md
-/// §3.4): λ² − (2 − Ω²)λ + 1 = 0, so ρ = 1 for Ω ≤ 2 and
+/// §D3.4): λ² − (2 − Ω²)λ + 1 = 0, so ρ = 1 for Ω ≤ 2 and
 /// ρ = (Ω² − 2 + √((Ω² − 2)² − 4))/2 above.
 fn central_difference_radius(omega: f64) -> f64 {
     let b = omega * omega - 2.0;

@@ -22,7 +22,7 @@
 //! * Contact: the approach `δ_k = z_w − w(x_k) + r(x_k)` (r: rail irregularity, positive up)
 //!   and `F_k = F(δ_k)` by a [`ContactLaw`]: `rigid` (δ_k = 0 while F_k > 0, a Lagrange
 //!   multiplier: the wheel follows the rail, which is the moving-mass model of references.md
-//!   §1.2 with all its inertia and convective terms), `hertz`, or `bem`. Loss of contact
+//!   §D1.2 with all its inertia and convective terms), `hertz`, or `bem`. Loss of contact
 //!   (F = 0) and re-contact are handled by every law.
 //!
 //! # Time step (references.md §D4.2)
