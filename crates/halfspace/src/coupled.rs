@@ -96,63 +96,22 @@ pub fn solve_coupled(
     tangential_options: &TangentialOptions,
     options: &CoupledOptions,
 ) -> Result<CoupledSolution, ContactError> {
-    positive("coupled tol", options.tol)?;
-    if options.max_outer == 0 {
-        return Err(ContactError::InvalidParameter {
-            name: "max_outer",
-            value: 0.0,
-            reason: "must be at least 1",
-        });
-    }
-    if normal.grid() != tangential.grid() {
-        return Err(ContactError::InvalidParameter {
-            name: "grid",
-            value: f64::NAN,
-            reason: "the normal and tangential solvers must share the grid",
-        });
-    }
-    let n = gap.len();
-    let decoupled = normal.material().k == 0.0;
-    let mut effective = gap.to_vec();
-    let mut un = vec![0.0; n];
-    let mut prev_pn: Option<Vec<f64>> = None;
-    let mut prev_pt: Option<(Vec<f64>, Vec<f64>)> = None;
-    let mut change = f64::INFINITY;
-    for outer in 1..=options.max_outer {
-        let ns = normal.solve(&effective, load, normal_options)?;
-        let ts = match problem {
-            CoupledProblem::Shift(l) => {
-                tangential.shift(&ns.pressure, mu, l, tangential_options)?
-            }
+    validate(normal, tangential, options)?;
+    outer_loop(
+        normal,
+        tangential,
+        gap,
+        gap.to_vec(),
+        load,
+        normal_options,
+        options,
+        |tangential, pressure| match problem {
+            CoupledProblem::Shift(l) => tangential.shift(pressure, mu, l, tangential_options),
             CoupledProblem::SteadyRolling(l) => {
-                tangential.steady_rolling(&ns.pressure, mu, l, tangential_options)?
+                tangential.steady_rolling(pressure, mu, l, tangential_options)
             }
-        };
-        change = outer_change(
-            prev_pn.as_deref(),
-            prev_pt.as_ref(),
-            &ns.pressure,
-            (&ts.traction_x, &ts.traction_y),
-        );
-        if decoupled || change <= options.tol {
-            return Ok(CoupledSolution {
-                normal: ns,
-                tangential: ts,
-                outer_iterations: outer,
-                effective_gap: effective,
-            });
-        }
-        tangential.normal_displacement(&ts.traction_x, &ts.traction_y, &mut un)?;
-        for ((e, h), u) in effective.iter_mut().zip(gap).zip(&un) {
-            *e = h + u;
-        }
-        prev_pn = Some(ns.pressure);
-        prev_pt = Some((ts.traction_x, ts.traction_y));
-    }
-    Err(ContactError::CoupledNotConverged {
-        iterations: options.max_outer,
-        residual: change,
-    })
+        },
+    )
 }
 
 /// One coupled transient step (K ≠ 0): the outer loop of [`solve_coupled`] around
@@ -174,6 +133,32 @@ pub fn solve_coupled_step(
     tangential_options: &TangentialOptions,
     options: &CoupledOptions,
 ) -> Result<CoupledSolution, ContactError> {
+    validate(normal, tangential, options)?;
+    // Start from the previous tractions' normal displacement.
+    let mut un = vec![0.0; gap.len()];
+    tangential.normal_displacement(previous_traction.0, previous_traction.1, &mut un)?;
+    let effective: Vec<f64> = gap.iter().zip(&un).map(|(h, u)| h + u).collect();
+    outer_loop(
+        normal,
+        tangential,
+        gap,
+        effective,
+        load,
+        normal_options,
+        options,
+        |tangential, pressure| {
+            tangential.set_previous_pressure(previous_pressure)?;
+            tangential.transient_step(pressure, mu, previous_traction, motion, tangential_options)
+        },
+    )
+}
+
+/// The checks shared by both entry points.
+fn validate(
+    normal: &NormalSolver,
+    tangential: &TangentialSolver,
+    options: &CoupledOptions,
+) -> Result<(), ContactError> {
     positive("coupled tol", options.tol)?;
     if options.max_outer == 0 {
         return Err(ContactError::InvalidParameter {
@@ -182,25 +167,40 @@ pub fn solve_coupled_step(
             reason: "must be at least 1",
         });
     }
-    let n = gap.len();
+    if normal.grid() != tangential.grid() {
+        return Err(ContactError::InvalidParameter {
+            name: "grid",
+            value: f64::NAN,
+            reason: "the normal and tangential solvers must share the grid",
+        });
+    }
+    Ok(())
+}
+
+/// The outer loop (module documentation): normal solve on `effective`, then
+/// `solve_tangential` on its pressure, until p_n and p_t stop changing; one pass for K = 0.
+#[allow(clippy::too_many_arguments)]
+fn outer_loop(
+    normal: &mut NormalSolver,
+    tangential: &mut TangentialSolver,
+    gap: &[f64],
+    mut effective: Vec<f64>,
+    load: NormalLoad,
+    normal_options: &SolverOptions,
+    options: &CoupledOptions,
+    mut solve_tangential: impl FnMut(
+        &mut TangentialSolver,
+        &[f64],
+    ) -> Result<TangentialSolution, ContactError>,
+) -> Result<CoupledSolution, ContactError> {
     let decoupled = normal.material().k == 0.0;
-    // Start from the previous tractions' normal displacement.
-    let mut un = vec![0.0; n];
-    tangential.normal_displacement(previous_traction.0, previous_traction.1, &mut un)?;
-    let mut effective: Vec<f64> = gap.iter().zip(&un).map(|(h, u)| h + u).collect();
+    let mut un = vec![0.0; gap.len()];
     let mut prev_pn: Option<Vec<f64>> = None;
     let mut prev_pt: Option<(Vec<f64>, Vec<f64>)> = None;
     let mut change = f64::INFINITY;
     for outer in 1..=options.max_outer {
         let ns = normal.solve(&effective, load, normal_options)?;
-        tangential.set_previous_pressure(previous_pressure)?;
-        let ts = tangential.transient_step(
-            &ns.pressure,
-            mu,
-            previous_traction,
-            motion,
-            tangential_options,
-        )?;
+        let ts = solve_tangential(tangential, &ns.pressure)?;
         change = outer_change(
             prev_pn.as_deref(),
             prev_pt.as_ref(),

@@ -22,6 +22,18 @@ pub enum ContactError {
         expected: usize,
         found: usize,
     },
+    /// A grid too large for the solvers, refused before anything is allocated.
+    #[error(
+        "grid of {nx} x {ny} = {elements} elements is too large (limits: {per_direction} per direction, {total} in total); the solvers would need about {memory_gib:.1} GiB",
+        elements = *nx as u128 * *ny as u128,
+        per_direction = crate::grid::MAX_ELEMENTS_PER_DIRECTION,
+        total = crate::grid::MAX_ELEMENTS
+    )]
+    GridTooLarge {
+        nx: usize,
+        ny: usize,
+        memory_gib: f64,
+    },
     /// Both bodies are rigid: the contact problem has no elastic solution.
     #[error("both bodies are rigid: at least one must be elastic")]
     BothRigid,
@@ -78,6 +90,24 @@ pub(crate) fn positive(name: &'static str, value: f64) -> Result<f64, ContactErr
             name,
             value,
             reason: "must be positive",
+        });
+    }
+    Ok(value)
+}
+
+/// Check that `value` is finite and lies in [lo, hi]; `reason` states the range.
+pub(crate) fn in_range(
+    name: &'static str,
+    value: f64,
+    lo: f64,
+    hi: f64,
+    reason: &'static str,
+) -> Result<f64, ContactError> {
+    if !(value.is_finite() && (lo..=hi).contains(&value)) {
+        return Err(ContactError::InvalidParameter {
+            name,
+            value,
+            reason,
         });
     }
     Ok(value)

@@ -4,7 +4,22 @@
 //! is stored at index `iy * nx + ix` (x fastest). Tractions are constant per element and
 //! displacements are collocated at element centres (references.md §C3.2).
 
-use crate::error::{ContactError, finite, positive};
+use crate::error::{ContactError, finite, in_range, positive};
+
+/// Largest number of elements in one direction (2²⁰).
+pub const MAX_ELEMENTS_PER_DIRECTION: usize = 1 << 20;
+
+/// Largest number of elements nx·ny (2²² = 2048²).
+pub const MAX_ELEMENTS: usize = 1 << 22;
+
+/// Estimated memory per element \[bytes\] of the normal and tangential solvers on one grid:
+/// influence tables and their spectra on the 2nx × 2ny zero-padded FFT grid (normal, three
+/// tangential, steady and shifted variants, coupling) and the work vectors, about 160 doubles.
+pub const WORKSPACE_BYTES_PER_ELEMENT: usize = 1280;
+
+/// Allowed element sizes dx, dy \[m\]: 1 nm … 10 m (contact patches are µm to cm; the upper
+/// bound leaves room for unit-scaled problems).
+pub const ELEMENT_SIZE_RANGE: (f64, f64) = (1e-9, 10.0);
 
 /// A uniform rectangular grid of `nx × ny` elements of size `dx × dy` \[m\],
 /// with lower-left corner (`x0`, `y0`) \[m\].
@@ -19,7 +34,9 @@ pub struct Grid {
 }
 
 impl Grid {
-    /// A validated grid: at least one element in each direction, positive finite sizes.
+    /// A validated grid: 1 ≤ nx, ny ≤ [`MAX_ELEMENTS_PER_DIRECTION`], nx·ny ≤ [`MAX_ELEMENTS`]
+    /// (checked before anything is allocated; the error states the memory the solvers would
+    /// need, [`Grid::workspace_bytes`]), element sizes in [`ELEMENT_SIZE_RANGE`], finite origin.
     pub fn new(
         nx: usize,
         ny: usize,
@@ -42,8 +59,12 @@ impl Grid {
                 reason: "the grid needs at least one element in y",
             });
         }
+        check_size(nx, ny)?;
+        let (lo, hi) = ELEMENT_SIZE_RANGE;
         positive("dx", dx)?;
         positive("dy", dy)?;
+        in_range("dx", dx, lo, hi, "must lie in [1e-9, 10] m")?;
+        in_range("dy", dy, lo, hi, "must lie in [1e-9, 10] m")?;
         finite("x0", x0)?;
         finite("y0", y0)?;
         Ok(Grid {
@@ -73,6 +94,12 @@ impl Grid {
             xc - 0.5 * nx as f64 * dx,
             yc - 0.5 * ny as f64 * dy,
         )
+    }
+
+    /// Estimated memory \[bytes\] of the normal and tangential solvers on an nx × ny grid
+    /// ([`WORKSPACE_BYTES_PER_ELEMENT`] per element; saturates instead of overflowing).
+    pub fn workspace_bytes(nx: usize, ny: usize) -> u128 {
+        nx as u128 * ny as u128 * WORKSPACE_BYTES_PER_ELEMENT as u128
     }
 
     /// Number of elements.
@@ -118,6 +145,22 @@ impl Grid {
     }
 }
 
+/// The size limits of [`Grid::new`].
+fn check_size(nx: usize, ny: usize) -> Result<(), ContactError> {
+    let elements = nx as u128 * ny as u128;
+    if nx > MAX_ELEMENTS_PER_DIRECTION
+        || ny > MAX_ELEMENTS_PER_DIRECTION
+        || elements > MAX_ELEMENTS as u128
+    {
+        return Err(ContactError::GridTooLarge {
+            nx,
+            ny,
+            memory_gib: Grid::workspace_bytes(nx, ny) as f64 / (1u64 << 30) as f64,
+        });
+    }
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -147,5 +190,51 @@ mod tests {
             Grid::new(3, 3, 1.0, f64::NAN, 0.0, 0.0),
             Err(ContactError::InvalidParameter { name: "dy", .. })
         ));
+    }
+
+    #[test]
+    fn oversized_grids_are_refused_before_allocating() {
+        // Sizes that used to overflow the allocator or abort (issue 9).
+        for (nx, ny) in [
+            (44_000_000, 1),
+            (usize::MAX >> 1, 64),
+            (64, usize::MAX),
+            (4096, 4096),
+        ] {
+            let err = Grid::new(nx, ny, 1e-4, 1e-4, 0.0, 0.0).unwrap_err();
+            let text = err.to_string();
+            assert!(matches!(err, ContactError::GridTooLarge { .. }), "{text}");
+            assert!(
+                text.contains(&nx.to_string()) && text.contains("GiB"),
+                "{text}"
+            );
+        }
+        // 4096² needs 4096² × 1280 bytes = 20 GiB: named in the message.
+        let text = Grid::new(4096, 4096, 1e-4, 1e-4, 0.0, 0.0)
+            .unwrap_err()
+            .to_string();
+        assert!(text.contains("20.0 GiB"), "{text}");
+        // The limits themselves are accepted.
+        assert!(Grid::new(2048, 2048, 1e-4, 1e-4, 0.0, 0.0).is_ok());
+        assert!(Grid::new(MAX_ELEMENTS_PER_DIRECTION, 1, 1e-6, 1e-3, 0.0, 0.0).is_ok());
+        assert!(Grid::new(MAX_ELEMENTS_PER_DIRECTION + 1, 1, 1e-6, 1e-3, 0.0, 0.0).is_err());
+    }
+
+    #[test]
+    fn element_sizes_outside_the_physical_range_are_named() {
+        for (dx, dy, name) in [
+            (1e-300, 1e-4, "dx"),
+            (1e300, 1e-4, "dx"),
+            (1e-4, 1e-10, "dy"),
+            (1e-4, 11.0, "dy"),
+        ] {
+            let err = Grid::new(8, 8, dx, dy, 0.0, 0.0).unwrap_err();
+            assert!(
+                matches!(err, ContactError::InvalidParameter { name: n, .. } if n == name),
+                "{err}"
+            );
+            assert!(err.to_string().contains("[1e-9, 10] m"), "{err}");
+        }
+        assert!(Grid::new(8, 8, 1e-9, 10.0, 0.0, 0.0).is_ok());
     }
 }

@@ -9,7 +9,12 @@
 //!
 //! A rigid body has 1/G = 0. Body 1 is the upper body.
 
-use crate::error::{ContactError, finite, positive};
+use crate::error::{ContactError, finite, in_range, positive};
+
+/// Allowed Young's and shear moduli \[Pa\]: 1 Pa … 1e18 Pa (soft gels are ~1e3 Pa, diamond
+/// ~1.2e12 Pa; 1 Pa admits unit-scaled problems, 1e18 Pa the near-rigid penalty studies that
+/// scale steel by 1e4 and more).
+pub const MODULUS_RANGE: (f64, f64) = (1.0, 1e18);
 
 /// One of the two bodies in contact.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -21,9 +26,11 @@ pub enum Body {
 }
 
 impl Body {
-    /// An elastic body, validated: E > 0 and finite, −1 < ν < 0.5.
+    /// An elastic body, validated: E in [`MODULUS_RANGE`], −1 < ν < 0.5.
     pub fn elastic(e: f64, nu: f64) -> Result<Self, ContactError> {
         positive("E", e)?;
+        let (lo, hi) = MODULUS_RANGE;
+        in_range("E", e, lo, hi, "must lie in [1, 1e18] Pa")?;
         finite("nu", nu)?;
         if nu >= 0.5 {
             return Err(ContactError::InvalidParameter {
@@ -93,6 +100,8 @@ impl Material {
     /// Directly from combined G and ν (CONTACT's input form).
     pub fn from_combined(g: f64, nu: f64) -> Result<Self, ContactError> {
         positive("G", g)?;
+        let (lo, hi) = MODULUS_RANGE;
+        in_range("G", g, lo, hi, "must lie in [1, 1e18] Pa")?;
         finite("nu", nu)?;
         if !(-1.0..0.5).contains(&nu) {
             return Err(ContactError::InvalidParameter {
@@ -178,5 +187,23 @@ mod tests {
             Material::combine(Body::Rigid, Body::Rigid),
             Err(ContactError::BothRigid)
         ));
+    }
+
+    #[test]
+    fn moduli_outside_the_physical_range_are_named() {
+        for e in [1e-300, 0.5, 1e300, 2e18] {
+            let err = Body::elastic(e, 0.3).unwrap_err();
+            assert!(matches!(
+                err,
+                ContactError::InvalidParameter { name: "E", .. }
+            ));
+            assert!(err.to_string().contains("[1, 1e18] Pa"), "{err}");
+            let err = Material::from_combined(e, 0.3).unwrap_err();
+            assert!(matches!(
+                err,
+                ContactError::InvalidParameter { name: "G", .. }
+            ));
+        }
+        assert!(Body::elastic(1.0, 0.3).is_ok() && Body::elastic(1e18, 0.3).is_ok());
     }
 }

@@ -1,0 +1,83 @@
+//! The sensitivity dF_n/dδ of a converged normal solution (module documentation of
+//! [`super`]): preconditioned CG on the contact set.
+
+use super::NormalSolver;
+use super::active_set::{mask, masked_dot};
+use crate::error::ContactError;
+use crate::linalg::dot;
+
+impl NormalSolver {
+    /// dF_n/dδ from A_CC x = 1_C by preconditioned CG (see the module documentation).
+    pub(super) fn sensitivity(
+        &mut self,
+        in_contact: &[bool],
+        tol: f64,
+        max_iter: usize,
+    ) -> Result<(f64, usize), ContactError> {
+        let n = self.grid.len();
+        let area = self.grid.element_area();
+        let w = &mut self.work;
+        w.active.copy_from_slice(in_contact);
+        // x in w.p's place would destroy the solution; use r/z/v/q and u as scratch, x in r_prev.
+        let x = &mut w.r_prev;
+        match &self.previous_sensitivity {
+            Some(prev) if prev.len() == n => {
+                x.copy_from_slice(prev);
+                mask(x, &w.active);
+            }
+            _ => x.fill(0.0),
+        }
+        // r = 1 − A x on C.
+        self.conv
+            .apply(&self.influence, &self.work.r_prev, &mut self.work.q);
+        self.convolutions += 1;
+        let w = &mut self.work;
+        let count = w.active.iter().filter(|&&a| a).count() as f64;
+        for i in 0..n {
+            w.r[i] = if w.active[i] { 1.0 - w.q[i] } else { 0.0 };
+        }
+        let norm0 = count.sqrt();
+        let mut rz_prev = 0.0;
+        let mut iterations = 0;
+        loop {
+            let w = &self.work;
+            let rnorm = dot(&w.r, &w.r).sqrt();
+            if rnorm <= tol * norm0 {
+                break;
+            }
+            if iterations >= max_iter {
+                return Err(ContactError::SensitivityNotConverged {
+                    iterations,
+                    residual: rnorm / norm0,
+                });
+            }
+            iterations += 1;
+            self.conv
+                .apply(&self.preconditioner, &self.work.r, &mut self.work.z);
+            self.convolutions += 1;
+            let w = &mut self.work;
+            mask(&mut w.z, &w.active);
+            let rz = dot(&w.r, &w.z);
+            let beta = if rz_prev > 0.0 { rz / rz_prev } else { 0.0 };
+            for i in 0..n {
+                w.v[i] = w.z[i] + beta * w.v[i];
+            }
+            rz_prev = rz;
+            self.conv
+                .apply(&self.influence, &self.work.v, &mut self.work.q);
+            self.convolutions += 1;
+            let w = &mut self.work;
+            let alpha = rz / masked_dot(&w.v, &w.q, &w.active);
+            for i in 0..n {
+                w.r_prev[i] += alpha * w.v[i];
+                if w.active[i] {
+                    w.r[i] -= alpha * w.q[i];
+                }
+            }
+        }
+        let w = &self.work;
+        let dfn = area * w.r_prev.iter().sum::<f64>();
+        self.previous_sensitivity = Some(w.r_prev.clone());
+        Ok((dfn, iterations))
+    }
+}
