@@ -12,7 +12,7 @@
 //! The coefficients come from Kalker's table E.3 as carried in CONTACT (`m_hertz.f90`,
 //! routine `linrol`, with C₂₃(a/b = 0.8, ν = 0.25) = 1.25), interpolated by CONTACT's rule:
 //! linear in the semi-axis ratio g between table rows, then a quadratic Lagrange fit of
-//! 1/C through ν = 0, 0.25, 0.5; below g = 0.1 the asymptotes of §4.2 are used.
+//! 1/C through ν = 0, 0.25, 0.5; below g = 0.1 the asymptotes of references.md §C4.2 are used.
 //! C₃₃ is not in the table, so the spin moment is not given here.
 
 use crate::error::{ContactError, positive};

@@ -84,7 +84,7 @@ fn worked_values_of_the_interpolation_rule() {
 
 #[test]
 fn asymptotes_join_the_table() {
-    // Below g = 0.1 the asymptotes of §4.2 take over. Kalker's table and the asymptotes are
+    // Below g = 0.1 the asymptotes of references.md §C4.2 take over. Kalker's table and the asymptotes are
     // different approximations; at g = 0.1 they agree to the table's accuracy for C11, C22
     // (a few per cent) — measured here so a wrong formula (factor 2, wrong Λ) is caught.
     for nu in [0.0, 0.28, 0.5] {

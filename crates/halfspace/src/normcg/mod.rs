@@ -24,7 +24,7 @@
 //! every update, and the pressure is rescaled to F after a projection.
 //!
 //! **Stopping rule.** Stop when an iteration leaves C unchanged and
-//! ‖Δp‖_rms ≤ tol · ‖p‖_rms (CONTACT's criterion, §3.7), and a final exact recomputation of
+//! ‖Δp‖_rms ≤ tol · ‖p‖_rms (CONTACT's criterion, references.md §C3.7), and a final exact recomputation of
 //! u confirms that no element outside C penetrates (e ≥ −tol·|δ|... see `penetration_tol`).
 //! Reaching `max_iter` first returns [`ContactError::NotConverged`] with the iteration
 //! count, the last relative change and the last iterate.

@@ -40,7 +40,7 @@
 //! brings the visited rows up to date: the iterates are those of full Gauss–Seidel). Sweeps
 //! run row by row from the leading edge (largest x) to the trailing edge, the SteadyGS order
 //! that resolves the dominant upstream coupling of steady rolling in one sweep. Stopping rule
-//! (CONTACT's, §3.7): ‖Δp‖_rms ≤ tol·‖p‖_rms over one sweep.
+//! (CONTACT's, references.md §C3.7): ‖Δp‖_rms ≤ tol·‖p‖_rms over one sweep.
 //!
 //! **Anderson acceleration.** The sweep map x ↦ G(x) (x = all tractions) is accelerated by
 //! Anderson mixing of depth m (default 3; Walker & Ni, SIAM J. Numer. Anal. 49 (2011) 1715):
@@ -52,7 +52,7 @@
 //!
 //! **Prescribed forces.** Newton's method on (ξ, η) (rolling) or (w_x, w_y) (shift), with the
 //! 2 × 2 Jacobian by forward differences and step halving, started from the full-adhesion
-//! (linear) response; CONTACT does the same on the creepages (§3.5).
+//! (linear) response; CONTACT does the same on the creepages (references.md §C3.5).
 //!
 //! **Dissimilar materials (K ≠ 0).** The pressure's own tangential displacement A_tn p_n
 //! (references.md §C3.2) enters W: A_tn p_n in a shift from the unloaded state,
