@@ -71,9 +71,9 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
-    /// Modal analysis of a bridge: table of n, βL, ω, f (from a file's [bridge] section).
+    /// Modal analysis of a bridge: table of n, βL, ω, f (from a file's `[bridge]` section).
     Modes {
-        /// Bridge file (TOML with a [bridge] section, or any scenario file that has one).
+        /// Bridge file (TOML with a `[bridge]` section, or any scenario file that has one).
         file: PathBuf,
         /// Print JSON (`modes`: list of `n`, `beta_l`, `omega`, `frequency`).
         #[arg(long)]

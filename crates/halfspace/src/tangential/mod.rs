@@ -61,9 +61,9 @@
 //! [`TangentialSolver::normal_displacement`]; [`crate::coupled`] alternates the two solves
 //! (Panagiotopoulos' process). Friction is Coulomb with a constant μ.
 //!
-//! Files: [`kernels`] (influence tables and spectra of the operators), [`sweep`] (the
-//! Gauss–Seidel sweep and the element solve), [`newton`] (prescribed forces),
-//! [`anderson`] (acceleration of the sweeps).
+//! Files: `kernels.rs` (influence tables and spectra of the operators), `sweep.rs` (the
+//! Gauss–Seidel sweep and the element solve), `newton.rs` (prescribed forces),
+//! `anderson.rs` (acceleration of the sweeps).
 
 mod anderson;
 mod kernels;

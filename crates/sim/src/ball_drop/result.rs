@@ -79,7 +79,7 @@ pub struct RunStats {
     pub contact_solves: usize,
 }
 
-/// Result of [`BallDrop::simulate`].
+/// Result of [`BallDrop::simulate`](super::BallDrop::simulate).
 #[derive(Debug, Clone, PartialEq)]
 pub struct BallDropResult {
     /// Time series (every step in contact, free flight every `output_interval`).
@@ -111,7 +111,7 @@ pub struct BallDropResult {
     pub plan: RunPlan,
     /// Step in contact / contact time (`None` without a contact time scale).
     pub step_ratio: Option<f64>,
-    /// Accuracy warnings: `|energy_drift|` above [`plan::ENERGY_DRIFT_LIMIT`] or `step_ratio`
-    /// above [`plan::STEP_RATIO_LIMIT`]; empty when neither is exceeded.
+    /// Accuracy warnings: `|energy_drift|` above [`ENERGY_DRIFT_LIMIT`](super::plan::ENERGY_DRIFT_LIMIT) or `step_ratio`
+    /// above [`STEP_RATIO_LIMIT`](super::plan::STEP_RATIO_LIMIT); empty when neither is exceeded.
     pub accuracy_flags: Vec<String>,
 }
