@@ -67,7 +67,6 @@ fn seeds() -> Vec<(String, String)> {
         .map(|e| e.expect("entry").path())
         .filter(|p| p.extension().is_some_and(|e| e == "toml"))
         .collect();
-    paths.push(repo().join("crates/dyncontact/scenarios/default.toml"));
     paths.sort();
     for p in paths {
         let text = std::fs::read_to_string(&p).expect("readable example");
