@@ -1,0 +1,266 @@
+//! The model: DOF layout, mass/damping/stiffness assembly of the contact-free structure,
+//! the contact laws and the static-equilibrium start (module documentation, "Start").
+
+use beam::Derivative;
+use faer::{Mat, MatRef};
+use integrate::structural::{StepEquation, StructuralStepper, StructuralSystem};
+
+use super::linalg::{BlockDiagonal, CapacitanceWork};
+use super::{
+    BemLaw, ContactLaw, ContactModel, ContactOutput, HertzLaw, RigidLaw, Scenario, Simulation,
+    SolverStats, VehicleBridgeError, WheelSample, Work, scenario,
+};
+
+/// The contact-free linear structure (bridge modes and vehicle), for the stepper.
+pub(super) struct Structure {
+    pub(super) mass: Mat<f64>,
+    pub(super) damping: Mat<f64>,
+    pub(super) stiffness: Mat<f64>,
+    pub(super) gravity_load: Vec<f64>,
+    /// Contact load added to the external force (used for the consistent start acceleration).
+    pub(super) contact_load: Vec<f64>,
+}
+
+impl StructuralSystem for Structure {
+    fn dimension(&self) -> usize {
+        self.gravity_load.len()
+    }
+    fn mass_matrix(&self) -> MatRef<'_, f64> {
+        self.mass.as_ref()
+    }
+    fn damping_matrix(&self) -> Option<MatRef<'_, f64>> {
+        Some(self.damping.as_ref())
+    }
+    fn internal_force(&mut self, q: &[f64], f_int: &mut [f64]) {
+        let n = q.len();
+        for (i, f) in f_int.iter_mut().enumerate() {
+            *f = (0..n).map(|j| self.stiffness[(i, j)] * q[j]).sum();
+        }
+    }
+    fn tangent_stiffness(&mut self, _q: &[f64], mut k: faer::MatMut<'_, f64>) -> bool {
+        k.copy_from(self.stiffness.as_ref());
+        true
+    }
+    fn is_linear(&self) -> bool {
+        true
+    }
+    fn external_force(&mut self, _t: f64, f_ext: &mut [f64]) {
+        for ((f, g), c) in f_ext
+            .iter_mut()
+            .zip(&self.gravity_load)
+            .zip(&self.contact_load)
+        {
+            *f = g + c;
+        }
+    }
+}
+
+impl Simulation {
+    /// Validates the scenario and sets up the static start (module documentation).
+    pub fn new(mut scenario: Scenario) -> Result<Self, VehicleBridgeError> {
+        let m = scenario.bridge.n_modes();
+        let length = scenario.bridge.length();
+        scenario::validate(&mut scenario)?;
+
+        // DOF layout and matrices.
+        let mut n = m;
+        let mut wheel_dof = Vec::new();
+        let mut body_dof = Vec::new();
+        for w in &scenario.wheels {
+            wheel_dof.push(n);
+            n += 1;
+            if w.body_mass > 0.0 {
+                body_dof.push(Some(n));
+                n += 1;
+            } else {
+                body_dof.push(None);
+            }
+        }
+        let omegas = scenario.bridge.circular_frequencies().to_vec();
+        let modal_c = scenario.damping.velocity_coefficients(&omegas)?;
+        let mut mass = Mat::<f64>::zeros(n, n);
+        let mut damping = Mat::<f64>::zeros(n, n);
+        let mut stiffness = Mat::<f64>::zeros(n, n);
+        let mut gravity_load = vec![0.0; n];
+        for j in 0..m {
+            let mj = scenario.bridge.modal_mass(j)?;
+            mass[(j, j)] = mj;
+            damping[(j, j)] = mj * modal_c[j];
+            stiffness[(j, j)] = mj * omegas[j] * omegas[j];
+        }
+        let g = scenario.gravity;
+        let mut static_loads = Vec::new();
+        for (k, w) in scenario.wheels.iter().enumerate() {
+            let iw = wheel_dof[k];
+            mass[(iw, iw)] = w.wheel_mass;
+            gravity_load[iw] = w.wheel_mass * g + w.static_load;
+            if let Some(ib) = body_dof[k] {
+                mass[(ib, ib)] = w.body_mass;
+                gravity_load[ib] = w.body_mass * g;
+                for (mat, v) in [
+                    (&mut damping, w.suspension_damping),
+                    (&mut stiffness, w.suspension_stiffness),
+                ] {
+                    mat[(iw, iw)] += v;
+                    mat[(ib, ib)] += v;
+                    mat[(iw, ib)] -= v;
+                    mat[(ib, iw)] -= v;
+                }
+            }
+            static_loads.push((w.wheel_mass + w.body_mass) * g + w.static_load);
+        }
+        let force_scale = static_loads.iter().copied().fold(0.0, f64::max);
+
+        // Contact laws.
+        let mut laws: Vec<Box<dyn ContactLaw>> = Vec::new();
+        for &load in &static_loads {
+            laws.push(match scenario.contact {
+                ContactModel::Rigid => Box::new(RigidLaw::default()),
+                ContactModel::Hertz => Box::new(HertzLaw::new(&scenario.geometry)?),
+                ContactModel::Bem { elements, tol } => {
+                    Box::new(BemLaw::new(&scenario.geometry, elements, 2.5 * load, tol)?)
+                }
+            });
+        }
+
+        // Static start.
+        let mut q0 = vec![0.0; n];
+        let mut forces = Vec::new();
+        let mut contact_load = vec![0.0; n];
+        for (k, w) in scenario.wheels.iter().enumerate() {
+            let delta = laws[k].static_approach(static_loads[k])?;
+            let zw = delta - scenario.irregularity.height(w.position);
+            q0[wheel_dof[k]] = zw;
+            if let Some(ib) = body_dof[k] {
+                q0[ib] = zw + w.body_mass * g / w.suspension_stiffness;
+            }
+            forces.push(static_loads[k]);
+            contact_load[wheel_dof[k]] = -static_loads[k];
+            if (0.0..=length).contains(&w.position) {
+                for j in 0..m {
+                    contact_load[j] += static_loads[k] * scenario.bridge.shape(j, w.position)?;
+                }
+            }
+        }
+        let mut structure = Structure {
+            mass,
+            damping,
+            stiffness,
+            gravity_load,
+            contact_load: contact_load.clone(),
+        };
+        // The wheel and body start moving with the rail under them: ż = −c r'(x_k0) keeps
+        // δ̇ = ż_w + c r' = 0 (r' by a central difference, h = 1e-6 m).
+        let mut v0 = vec![0.0; n];
+        for (k, w) in scenario.wheels.iter().enumerate() {
+            let h = 1e-6;
+            let irr = &scenario.irregularity;
+            let slope = (irr.height(w.position + h) - irr.height(w.position - h)) / (2.0 * h);
+            v0[wheel_dof[k]] = -scenario.speed * slope;
+            if let Some(ib) = body_dof[k] {
+                v0[ib] = -scenario.speed * slope;
+            }
+        }
+        // A massless wheel's row and column of M are zero: the stepper treats it as a massless
+        // DOF (no inertia in its step row, start acceleration 0; the static start balances the
+        // wheel row exactly, so (f_ext − C v − K q)_w = 0 there as well).
+        let stepper = StructuralStepper::new(scenario.method, &mut structure, 0.0, &q0, &v0)?;
+        let nw = scenario.wheels.len();
+        let ncols: Vec<usize> = laws.iter().map(|l| l.columns().len()).collect();
+        let work = Work {
+            x: vec![0.0; n],
+            r: vec![0.0; n],
+            res: vec![0.0; n],
+            f_ext: vec![0.0; n],
+            shape_at_wheel: vec![vec![0.0; m]; nw],
+            shape_at_columns: ncols.iter().map(|&c| vec![0.0; c * m]).collect(),
+            r_at_wheel: vec![0.0; nw],
+            r_at_columns: ncols.iter().map(|&c| vec![0.0; c]).collect(),
+            column_gap: ncols.iter().map(|&c| vec![0.0; c]).collect(),
+            column_force: ncols.iter().map(|&c| vec![0.0; c]).collect(),
+            modal_load: vec![vec![0.0; m]; nw],
+            g_hat: vec![vec![0.0; n]; nw],
+            v: vec![vec![0.0; n]; nw],
+            g_act: vec![vec![0.0; n]; nw],
+            v_act: vec![vec![0.0; n]; nw],
+            outputs: vec![ContactOutput::default(); nw],
+            delta: vec![0.0; nw],
+            prev_force: vec![0.0; nw],
+            last_df: vec![0.0; nw],
+            active: Vec::with_capacity(nw),
+            compliance: vec![0.0; nw],
+            delta_tilde: vec![0.0; nw],
+            df: vec![0.0; nw],
+            cap: CapacitanceWork::new(n, nw),
+            dense: Vec::new(),
+            floor_residual: vec![0.0; n],
+            floor_ainv_g: vec![0.0; n],
+            force_floor: 0.0,
+        };
+        let mut output_shapes = vec![0.0; m];
+        scenario
+            .bridge
+            .eval_all(scenario.output_point, Derivative::Shape, &mut output_shapes)?;
+        let mut sim = Self {
+            laws,
+            structure,
+            stepper,
+            eq: StepEquation::default(),
+            wheel_dof,
+            body_dof,
+            static_loads,
+            force_scale,
+            contact_load,
+            forces,
+            samples: vec![WheelSample::default(); nw],
+            work,
+            a_matrix: BlockDiagonal::new(n),
+            a_coefficients: (f64::NAN, f64::NAN, f64::NAN),
+            stats: SolverStats::default(),
+            output_shapes,
+            loss_events: 0,
+            wheel_loss_events: vec![0; nw],
+            static_contact_stiffness: vec![0.0; nw],
+            in_contact: vec![true; nw],
+            scenario,
+            traction: None,
+            radau: None,
+        };
+        sim.initial_samples()?;
+        Ok(sim)
+    }
+
+    /// Fills the samples at t = 0 (static state).
+    fn initial_samples(&mut self) -> Result<(), VehicleBridgeError> {
+        self.wheel_geometry(self.stepper.t())?;
+        for k in 0..self.scenario.wheels.len() {
+            let x = self.scenario.wheels[k].position;
+            let q = self.stepper.q().to_vec();
+            let zw = q[self.wheel_dof[k]];
+            let delta = self.work.approach(k, self.wheel_dof[k], &q);
+            let mut out = if self.laws[k].is_rigid() {
+                ContactOutput {
+                    force: self.static_loads[k],
+                    ..ContactOutput::default()
+                }
+            } else {
+                let ncol = self.laws[k].columns().len();
+                let zero = vec![0.0; ncol];
+                let mut cf = vec![0.0; ncol];
+                self.laws[k].evaluate(delta, &zero, &mut cf, true)?
+            };
+            out.iterations = 0;
+            self.static_contact_stiffness[k] = out.stiffness;
+            self.samples[k] = WheelSample {
+                position: x,
+                wheel_displacement: zw,
+                body_displacement: self.body_dof[k].map_or(zw, |ib| q[ib]),
+                body_acceleration: 0.0,
+                wheel_acceleration: 0.0,
+                approach: delta,
+                contact: out,
+            };
+        }
+        Ok(())
+    }
+}

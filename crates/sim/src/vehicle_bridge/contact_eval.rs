@@ -1,0 +1,92 @@
+//! Contact evaluation at an iterate: mode shapes and irregularity under the wheels and
+//! their contact columns, the approach, the contact forces and their modal loads.
+
+use beam::Derivative;
+
+use super::{ContactOutput, Simulation, VehicleBridgeError};
+
+impl Simulation {
+    /// Mode shapes and irregularity at the wheels and their contact columns at time `t`.
+    pub(super) fn wheel_geometry(&mut self, t: f64) -> Result<(), VehicleBridgeError> {
+        let basis = &*self.scenario.bridge;
+        let length = basis.length();
+        let m = basis.n_modes();
+        let w = &mut self.work;
+        for (k, spec) in self.scenario.wheels.iter().enumerate() {
+            let x = spec.position + self.scenario.speed * t;
+            self.samples[k].position = x;
+            if (0.0..=length).contains(&x) {
+                basis.eval_all(x, Derivative::Shape, &mut w.shape_at_wheel[k])?;
+            } else {
+                w.shape_at_wheel[k].fill(0.0);
+            }
+            w.r_at_wheel[k] = self.scenario.irregularity.height(x);
+            for (i, &xi) in self.laws[k].columns().iter().enumerate() {
+                let xc = x + xi;
+                let out = &mut w.shape_at_columns[k][i * m..(i + 1) * m];
+                if (0.0..=length).contains(&xc) {
+                    basis.eval_all(xc, Derivative::Shape, out)?;
+                } else {
+                    out.fill(0.0);
+                }
+                w.r_at_columns[k][i] = self.scenario.irregularity.height(xc);
+            }
+        }
+        Ok(())
+    }
+
+    /// Evaluates every contact at the iterate `work.x`: approach, force, modal loads, ĝ and v.
+    pub(super) fn evaluate_contacts(&mut self, tangent: bool) -> Result<(), VehicleBridgeError> {
+        let m = self.scenario.bridge.n_modes();
+        let w = &mut self.work;
+        for k in 0..self.laws.len() {
+            let iw = self.wheel_dof[k];
+            let defl = w.deflection_under(k, &w.x);
+            let delta = w.approach(k, iw, &w.x);
+            w.delta[k] = delta;
+            let shapes = &w.shape_at_wheel[k];
+            let law = &mut self.laws[k];
+            let out = if law.is_rigid() {
+                let f = self.forces[k];
+                w.column_force[k][0] = f;
+                ContactOutput {
+                    force: f,
+                    ..ContactOutput::default()
+                }
+            } else {
+                let ncol = law.columns().len();
+                for i in 0..ncol {
+                    let cs = &w.shape_at_columns[k][i * m..(i + 1) * m];
+                    let wc: f64 = (0..m).map(|j| w.x[j] * cs[j]).sum();
+                    w.column_gap[k][i] = (wc - defl) - (w.r_at_columns[k][i] - w.r_at_wheel[k]);
+                }
+                law.evaluate(delta, &w.column_gap[k], &mut w.column_force[k], tangent)?
+            };
+            w.outputs[k] = out;
+            let load = &mut w.modal_load[k];
+            load.fill(0.0);
+            for (i, &fc) in w.column_force[k].iter().enumerate() {
+                if fc != 0.0 {
+                    let cs = &w.shape_at_columns[k][i * m..(i + 1) * m];
+                    for j in 0..m {
+                        load[j] += fc * cs[j];
+                    }
+                }
+            }
+            let (gh, v) = (&mut w.g_hat[k], &mut w.v[k]);
+            gh.fill(0.0);
+            v.fill(0.0);
+            for j in 0..m {
+                v[j] = -shapes[j];
+                gh[j] = if out.force > 0.0 {
+                    -load[j] / out.force
+                } else {
+                    -shapes[j]
+                };
+            }
+            v[iw] = 1.0;
+            gh[iw] = 1.0;
+        }
+        Ok(())
+    }
+}

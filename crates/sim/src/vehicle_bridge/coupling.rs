@@ -1,0 +1,445 @@
+//! The coupling iteration of one step attempt (module documentation, "Time step"): the
+//! Picard, quasi-Newton (Sherman–Morrison / Woodbury) and Newton iterations, the
+//! extrapolated quasi-Newton start, and the floating-point floor of the contact forces.
+
+use super::linalg::{self, contact_update, dense_contact_update};
+use super::step::StepFailure;
+use super::{ContactOutput, CouplingSolver, Simulation, VehicleBridgeError};
+
+impl Simulation {
+    /// Quasi-Newton start without a contact evaluation: every contact law is replaced by its
+    /// linearisation at the end of the previous step, `F ≈ F_n + k_n (δ − δ_n)`, with the
+    /// previous column forces carried along with the wheel (modal loads
+    /// `I_j ≈ (F/F_n) Σ_i F_n,i w_j(x_k + ξ_i)` at the new position), and one
+    /// Sherman–Morrison/Woodbury update is applied to the predictor `work.x`. The following
+    /// contact evaluations correct it; with a smooth force history the first correction is then
+    /// often already below the tolerance, so the step needs one contact solve instead of two.
+    /// Skipped unless every wheel is in compliant contact with a known tangent.
+    fn extrapolated_start(&mut self, s: f64) {
+        let m = self.scenario.bridge.n_modes();
+        let nw = self.laws.len();
+        let w = &mut self.work;
+        let usable = (0..nw).all(|k| {
+            !self.laws[k].is_rigid()
+                && w.outputs[k].force > 0.0
+                && w.outputs[k].stiffness > 0.0
+                && w.column_force[k].iter().sum::<f64>() > 0.0
+        });
+        if !usable {
+            return;
+        }
+        self.a_matrix.mul(&w.x, &mut w.res);
+        for i in 0..w.x.len() {
+            w.res[i] = w.r[i] - w.res[i];
+        }
+        for k in 0..nw {
+            let iw = self.wheel_dof[k];
+            let delta = w.approach(k, iw, &w.x);
+            let shapes = &w.shape_at_wheel[k];
+            let (f_n, k_n) = (w.outputs[k].force, w.outputs[k].stiffness);
+            let force = f_n + k_n * (delta - w.delta[k]);
+            if force <= 0.0 {
+                return;
+            }
+            let cols: f64 = w.column_force[k].iter().sum();
+            let scale = force / cols;
+            let (gh, v) = (&mut w.g_act[k], &mut w.v_act[k]);
+            gh.fill(0.0);
+            v.fill(0.0);
+            for (i, &fc) in w.column_force[k].iter().enumerate() {
+                if fc != 0.0 {
+                    let cs = &w.shape_at_columns[k][i * m..(i + 1) * m];
+                    for j in 0..m {
+                        gh[j] -= scale * fc * cs[j];
+                    }
+                }
+            }
+            // −R gets +s I_k on the modes and −s F_k on the wheel; ĝ = (−I/F, +1).
+            for j in 0..m {
+                w.res[j] -= s * gh[j];
+                gh[j] /= force;
+                v[j] = -shapes[j];
+            }
+            w.res[iw] -= s * force;
+            gh[iw] = 1.0;
+            v[iw] = 1.0;
+            w.compliance[k] = 1.0 / k_n;
+            w.delta_tilde[k] = 0.0;
+        }
+        let ok = contact_update(
+            &self.a_matrix,
+            s,
+            &w.g_act[..nw],
+            &w.v_act[..nw],
+            &w.compliance[..nw],
+            &w.delta_tilde[..nw],
+            &mut w.res,
+            &mut w.df,
+            &mut w.cap,
+        );
+        if ok && w.res.iter().all(|d| d.is_finite()) {
+            for (x, d) in w.x.iter_mut().zip(&w.res) {
+                *x += d;
+            }
+        }
+    }
+
+    /// The floating-point floor of the contact forces in this step, into `work.force_floor`
+    /// \[N\]: the largest over the wheels of
+    ///
+    /// ```text
+    /// F_floor,k = κ ε (|v_k|ᵀ |A⁻¹| e + |δ|_k) / (1/k_c + s |v_kᵀ A⁻¹ ĝ_k|),
+    /// e_i = |r_i| + |(A x)_i| + s |G_i|,   |δ|_k = |x_w| + Σ_j |q_j w_j(x_k)| + |r(x_k)|,
+    /// ```
+    ///
+    /// with ε the machine epsilon and κ = 32: the step residual R = A x − r − s G cannot be
+    /// computed more accurately than ε e (each entry is a sum of terms of size e_i), nor the
+    /// approach than ε |δ|_k, and one (quasi-)Newton force update maps such an error through the
+    /// same formula as a true residual (`linalg::contact_update`, one wheel). A force change
+    /// below it is round-off: for a 2.8e5 N moving mass at Δt = 2e-5 s it is 2.9e-2 N,
+    /// far above ε |F| because the step matrix A ~ m/(β Δt²) is large.
+    fn force_floor(&mut self, s: f64) {
+        let m = self.scenario.bridge.n_modes();
+        let w = &mut self.work;
+        let e = &mut w.floor_residual;
+        self.a_matrix.mul(&w.x, e);
+        for (i, ei) in e.iter_mut().enumerate() {
+            *ei = ei.abs() + w.r[i].abs();
+        }
+        for k in 0..self.laws.len() {
+            for j in 0..m {
+                e[j] += s * w.modal_load[k][j].abs();
+            }
+            e[self.wheel_dof[k]] += s * w.outputs[k].force.abs();
+        }
+        self.a_matrix.solve_abs_in_place(e);
+        let mut floor = 0.0f64;
+        for k in 0..self.laws.len() {
+            let iw = self.wheel_dof[k];
+            let shapes = &w.shape_at_wheel[k];
+            let approach_scale = w.x[iw].abs()
+                + (0..m).map(|j| (w.x[j] * shapes[j]).abs()).sum::<f64>()
+                + w.r_at_wheel[k].abs();
+            let propagated: f64 = w.v[k].iter().zip(e.iter()).map(|(v, y)| v.abs() * y).sum();
+            w.floor_ainv_g.copy_from_slice(&w.g_hat[k]);
+            self.a_matrix.solve_in_place(&mut w.floor_ainv_g);
+            let compliance = if self.laws[k].is_rigid() || w.outputs[k].stiffness <= 0.0 {
+                0.0
+            } else {
+                1.0 / w.outputs[k].stiffness
+            };
+            let den = compliance + s * linalg::dot(&w.v[k], &w.floor_ainv_g).abs();
+            if den > 0.0 && den.is_finite() {
+                let f = 32.0 * f64::EPSILON * (propagated + approach_scale) / den;
+                floor = floor.max(f);
+            }
+        }
+        w.force_floor = floor;
+    }
+
+    /// One step attempt of size `dt`; on success the state is advanced.
+    pub(super) fn try_step(&mut self, dt: f64) -> Result<(), StepFailure> {
+        let fatal = |e: VehicleBridgeError| StepFailure {
+            iterations: 0,
+            change: 0.0,
+            reason: e.to_string(),
+            fatal: Some(e),
+        };
+        self.stepper
+            .step_equation_into(dt, &mut self.eq)
+            .map_err(|e| fatal(e.into()))?;
+        self.update_a().map_err(fatal)?;
+        let s = 1.0 - self.eq.alpha_f;
+        let n = self.work.x.len();
+        for i in 0..n {
+            self.work.f_ext[i] =
+                self.structure.gravity_load[i] + self.eq.alpha_f * self.contact_load[i];
+        }
+        self.eq
+            .effective_load(
+                self.structure.mass.as_ref(),
+                Some(self.structure.damping.as_ref()),
+                &self.work.f_ext,
+                &mut self.work.r,
+            )
+            .map_err(|e| fatal(e.into()))?;
+        self.wheel_geometry(self.eq.t_new).map_err(fatal)?;
+        let c_qa = self.eq.displacement_per_acceleration;
+        for i in 0..n {
+            self.work.x[i] = self.eq.q_pred[i] + c_qa * self.stepper.a()[i];
+        }
+        if self.scenario.coupling.solver == CouplingSolver::QuasiNewton {
+            self.extrapolated_start(s);
+        }
+        let nw = self.laws.len();
+        let tol = self.scenario.coupling.tol * self.force_scale;
+        let solver = self.scenario.coupling.solver;
+        let mut change = f64::INFINITY;
+        let mut converged = false;
+        let mut iterations = 0;
+        let mut contact_iterations = 0;
+        let mut growth = 0;
+        // The force changes of the two previous iterations (stagnation test).
+        let mut history = [f64::INFINITY; 2];
+        // A rigid multiplier was clipped at zero in the last update (the state then does not
+        // match the forces, so another iteration is needed).
+        let mut clamped = false;
+        for it in 1..=self.scenario.coupling.max_iter {
+            iterations = it;
+            let tangent = match solver {
+                CouplingSolver::Newton => true,
+                CouplingSolver::QuasiNewton => it == 1,
+                CouplingSolver::Picard => false,
+            };
+            if let Err(e) = self.evaluate_contacts(tangent) {
+                return Err(StepFailure {
+                    iterations,
+                    change,
+                    reason: e.to_string(),
+                    fatal: None,
+                });
+            }
+            let w = &mut self.work;
+            contact_iterations += w.outputs.iter().map(|o| o.iterations).sum::<usize>();
+            if it > 1 {
+                let mut c = 0.0f64;
+                for k in 0..nw {
+                    let d = if self.laws[k].is_rigid() {
+                        w.last_df[k].abs()
+                    } else {
+                        (w.outputs[k].force - w.prev_force[k]).abs()
+                    };
+                    c = c.max(d);
+                }
+                if c > change {
+                    growth += 1;
+                } else {
+                    growth = 0;
+                }
+                change = c;
+                if !change.is_finite() || (growth >= 4 && change > 10.0 * self.force_scale) {
+                    return Err(StepFailure {
+                        iterations,
+                        change,
+                        reason: "the iteration diverges".to_string(),
+                        fatal: None,
+                    });
+                }
+                // Converged at the tolerance, or at the floating-point floor of the forces:
+                // below the floor the change is round-off (it stagnates instead of falling), so
+                // a change within the floor, or one that stopped decreasing over two iterations
+                // within 16× the floor, is convergence.
+                let floor = w.force_floor;
+                let stagnant = change <= 16.0 * floor && history[0].min(history[1]) <= change;
+                if (change <= tol.max(floor) || stagnant) && !clamped {
+                    converged = true;
+                    break;
+                }
+                history = [history[1], change];
+            }
+            for k in 0..nw {
+                w.prev_force[k] = w.outputs[k].force;
+            }
+            // Residual R = A x − r − s Σ G_k, written as −R into `res`.
+            self.a_matrix.mul(&w.x, &mut w.res);
+            for i in 0..n {
+                w.res[i] = w.r[i] - w.res[i];
+            }
+            let m = self.scenario.bridge.n_modes();
+            for k in 0..nw {
+                for j in 0..m {
+                    w.res[j] += s * w.modal_load[k][j];
+                }
+                w.res[self.wheel_dof[k]] -= s * w.outputs[k].force;
+            }
+            if it == 1 {
+                self.force_floor(s);
+            }
+            let w = &mut self.work;
+            let ok = match solver {
+                CouplingSolver::Picard => {
+                    self.a_matrix.solve_in_place(&mut w.res);
+                    true
+                }
+                CouplingSolver::QuasiNewton | CouplingSolver::Newton => {
+                    w.active.clear();
+                    for k in 0..nw {
+                        let rigid = self.laws[k].is_rigid();
+                        let active = if rigid {
+                            self.forces[k] > 0.0 || w.delta[k] > 0.0
+                        } else {
+                            w.outputs[k].stiffness > 0.0
+                        };
+                        w.last_df[k] = 0.0;
+                        if active {
+                            let a = w.active.len();
+                            w.compliance[a] = if rigid {
+                                0.0
+                            } else {
+                                1.0 / w.outputs[k].stiffness
+                            };
+                            w.delta_tilde[a] = if rigid { w.delta[k] } else { 0.0 };
+                            w.active.push(k);
+                        }
+                    }
+                    let ka = w.active.len();
+                    // The active wheels' vectors, copied into preallocated rows (no allocation).
+                    for (a, &k) in w.active.iter().enumerate() {
+                        w.g_act[a].copy_from_slice(&w.g_hat[k]);
+                        w.v_act[a].copy_from_slice(&w.v[k]);
+                    }
+                    let (g_hat, v) = (&w.g_act[..ka], &w.v_act[..ka]);
+                    let ok = if solver == CouplingSolver::QuasiNewton {
+                        contact_update(
+                            &self.a_matrix,
+                            s,
+                            g_hat,
+                            v,
+                            &w.compliance[..ka],
+                            &w.delta_tilde[..ka],
+                            &mut w.res,
+                            &mut w.df,
+                            &mut w.cap,
+                        )
+                    } else {
+                        dense_contact_update(
+                            &self.a_matrix,
+                            s,
+                            g_hat,
+                            v,
+                            &w.compliance[..ka],
+                            &w.delta_tilde[..ka],
+                            &mut w.res,
+                            &mut w.df,
+                            &mut w.dense,
+                        )
+                    };
+                    clamped = false;
+                    for (a, &k) in w.active.iter().enumerate() {
+                        if self.laws[k].is_rigid() {
+                            clamped |= self.forces[k] + w.df[a] < 0.0;
+                            let f_new = (self.forces[k] + w.df[a]).max(0.0);
+                            w.last_df[k] = f_new - self.forces[k];
+                            self.forces[k] = f_new;
+                        }
+                    }
+                    ok
+                }
+            };
+            if !ok {
+                return Err(StepFailure {
+                    iterations,
+                    change,
+                    reason: "singular coupled step matrix".to_string(),
+                    fatal: None,
+                });
+            }
+            for i in 0..n {
+                w.x[i] += w.res[i];
+            }
+            if w.x.iter().any(|v| !v.is_finite()) {
+                return Err(StepFailure {
+                    iterations,
+                    change,
+                    reason: "non-finite state".to_string(),
+                    fatal: None,
+                });
+            }
+            // (Quasi-)Newton: when every wheel is in contact and the predicted force
+            // corrections are within the tolerance, accept the corrected state with the
+            // linearised forces F + ΔF (error O(ΔF²)) without another contact evaluation.
+            if solver != CouplingSolver::Picard && w.active.len() == nw && !clamped {
+                let predicted = w.df[..nw].iter().fold(0.0f64, |m, d| m.max(d.abs()));
+                let all_positive = w
+                    .active
+                    .iter()
+                    .enumerate()
+                    .all(|(a, &k)| w.outputs[k].force + w.df[a] > 0.0);
+                if predicted <= tol.max(w.force_floor) && all_positive {
+                    for (a, &k) in w.active.iter().enumerate() {
+                        let f_old = w.outputs[k].force;
+                        let f_new = if self.laws[k].is_rigid() {
+                            self.forces[k]
+                        } else {
+                            f_old + w.df[a]
+                        };
+                        if f_old > 0.0 {
+                            let scale = f_new / f_old;
+                            w.modal_load[k].iter_mut().for_each(|l| *l *= scale);
+                        } else {
+                            for (l, sh) in w.modal_load[k].iter_mut().zip(&w.shape_at_wheel[k]) {
+                                *l = f_new * sh;
+                            }
+                        }
+                        w.outputs[k].force = f_new;
+                        w.delta[k] = w.approach(k, self.wheel_dof[k], &w.x);
+                    }
+                    change = predicted;
+                    converged = true;
+                    break;
+                }
+            }
+        }
+        if !converged {
+            return Err(StepFailure {
+                iterations,
+                change,
+                reason: format!(
+                    "no convergence in {} iterations to the target force change {:e} N (coupling.tol = {:e} × the largest static wheel load {:e} N; floating-point floor of the forces {:e} N)",
+                    self.scenario.coupling.max_iter,
+                    tol,
+                    self.scenario.coupling.tol,
+                    self.force_scale,
+                    self.work.force_floor,
+                ),
+                fatal: None,
+            });
+        }
+        // Accept: the generalized contact force at t_{n+1}.
+        let m = self.scenario.bridge.n_modes();
+        let w = &self.work;
+        self.contact_load.fill(0.0);
+        for k in 0..nw {
+            for j in 0..m {
+                self.contact_load[j] += w.modal_load[k][j];
+            }
+            self.contact_load[self.wheel_dof[k]] = -w.outputs[k].force;
+        }
+        self.structure
+            .contact_load
+            .copy_from_slice(&self.contact_load);
+        let x = std::mem::take(&mut self.work.x);
+        let finished = self.stepper.finish_step(&mut self.structure, dt, &x);
+        self.work.x = x;
+        finished.map_err(|e| fatal(e.into()))?;
+        self.stats.steps += 1;
+        self.stats.iterations += iterations;
+        self.stats.max_iterations = self.stats.max_iterations.max(iterations);
+        self.stats.contact_iterations += contact_iterations;
+        self.stats.max_force_floor = self.stats.max_force_floor.max(self.work.force_floor);
+        let q = self.stepper.q();
+        let a = self.stepper.a();
+        for k in 0..nw {
+            let iw = self.wheel_dof[k];
+            let contact = self.work.outputs[k];
+            let touching = contact.force > 0.0;
+            if self.in_contact[k] && !touching {
+                self.loss_events += 1;
+                self.wheel_loss_events[k] += 1;
+            }
+            self.in_contact[k] = touching;
+            self.forces[k] = contact.force;
+            let sample = &mut self.samples[k];
+            sample.wheel_displacement = q[iw];
+            sample.wheel_acceleration = a[iw];
+            sample.body_displacement = self.body_dof[k].map_or(q[iw], |ib| q[ib]);
+            sample.body_acceleration = self.body_dof[k].map_or(0.0, |ib| a[ib]);
+            sample.approach = self.work.delta[k];
+            sample.contact = ContactOutput {
+                iterations: contact_iterations,
+                ..contact
+            };
+        }
+        Ok(())
+    }
+}

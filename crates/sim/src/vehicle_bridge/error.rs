@@ -1,0 +1,60 @@
+//! The error type of the vehicle–bridge simulation and the parameter-check helpers.
+
+use beam::BeamError;
+use halfspace::ContactError;
+use integrate::IntegrateError;
+
+/// Errors of the vehicle–bridge simulation.
+#[derive(Debug, thiserror::Error)]
+pub enum VehicleBridgeError {
+    /// A parameter is out of range; `name` is the scenario key.
+    #[error("invalid `{name}` = {value}: {reason}")]
+    InvalidParameter {
+        name: String,
+        value: f64,
+        reason: String,
+    },
+    /// The beam (modal basis) failed.
+    #[error("bridge: {0}")]
+    Beam(#[from] BeamError),
+    /// The time integrator failed.
+    #[error("integrator: {0}")]
+    Integrate(#[from] IntegrateError),
+    /// The half-space contact solver failed.
+    #[error("contact solver: {0}")]
+    Contact(#[from] ContactError),
+    /// The contact-free step matrix A has a singular (or non-finite) block at `dof`.
+    #[error("singular step matrix at DOF {dof}: {reason}")]
+    SingularStepMatrix { dof: usize, reason: String },
+    /// The coupling iteration of a step failed even after step reduction.
+    #[error(
+        "coupling ({solver}) failed at t = {t:.6} s with step {dt:e} s after {halvings} step halvings: {reason} (last force change {change:e} N after {iterations} iterations)"
+    )]
+    CouplingFailed {
+        solver: &'static str,
+        t: f64,
+        dt: f64,
+        halvings: usize,
+        iterations: usize,
+        change: f64,
+        reason: String,
+    },
+}
+
+/// The error of an out-of-range scenario key `name` with its `value` and the allowed range.
+pub(crate) fn invalid(name: impl Into<String>, value: f64, reason: &str) -> VehicleBridgeError {
+    VehicleBridgeError::InvalidParameter {
+        name: name.into(),
+        value,
+        reason: reason.to_string(),
+    }
+}
+
+/// Checks that the scenario key `name` is finite and ≥ 0.
+pub(super) fn check_non_negative(name: String, v: f64) -> Result<(), VehicleBridgeError> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(())
+    } else {
+        Err(invalid(name, v, "must be finite and >= 0"))
+    }
+}

@@ -1,0 +1,110 @@
+//! Step acceptance: the public step, recursive step halving of a failing attempt, and the
+//! block-diagonal step matrix A = c_M M + c_C C + c_K K.
+
+use super::{Simulation, VehicleBridgeError};
+
+/// Why one step attempt failed.
+#[derive(Debug)]
+pub(super) struct StepFailure {
+    pub(super) iterations: usize,
+    pub(super) change: f64,
+    pub(super) reason: String,
+    pub(super) fatal: Option<VehicleBridgeError>,
+}
+
+impl Simulation {
+    /// Advances by one step of the scenario's Δt (with step reduction on failure).
+    pub fn step(&mut self) -> Result<(), VehicleBridgeError> {
+        let dt = self.scenario.dt;
+        if self.radau.is_some() {
+            self.radau_step(dt)?;
+        } else {
+            self.advance(dt, 0)?;
+        }
+        if let Some(tr) = self.traction.as_mut() {
+            tr.update(dt, self.scenario.speed, &self.samples, &self.laws)?;
+        }
+        Ok(())
+    }
+
+    /// Advances by `dt`, retrying a failed attempt as two half steps up to
+    /// `coupling.max_halvings` times (module documentation).
+    pub(super) fn advance(&mut self, dt: f64, depth: usize) -> Result<(), VehicleBridgeError> {
+        match self.try_step(dt) {
+            Ok(()) => Ok(()),
+            Err(failure) => {
+                if let Some(fatal) = failure.fatal {
+                    return Err(fatal);
+                }
+                self.stats.failed_steps += 1;
+                if depth >= self.scenario.coupling.max_halvings {
+                    return Err(VehicleBridgeError::CouplingFailed {
+                        solver: self.scenario.coupling.solver.name(),
+                        t: self.t(),
+                        dt,
+                        halvings: depth,
+                        iterations: failure.iterations,
+                        change: failure.change,
+                        reason: failure.reason,
+                    });
+                }
+                self.advance(0.5 * dt, depth + 1)?;
+                self.advance(0.5 * dt, depth + 1)
+            }
+        }
+    }
+
+    /// Rebuilds the block-diagonal step matrix A if the step coefficients changed. A singular
+    /// block (e.g. a massless wheel without suspension in the step, or non-finite
+    /// coefficients) is an error naming the DOF, never silently dropped.
+    pub(super) fn update_a(&mut self) -> Result<(), VehicleBridgeError> {
+        let eq = &self.eq;
+        let key = (
+            eq.mass_coefficient,
+            eq.damping_coefficient,
+            eq.stiffness_coefficient,
+        );
+        if key == self.a_coefficients {
+            return Ok(());
+        }
+        // Invalidate first: a failed rebuild must not be reused by the next step.
+        self.a_coefficients = (f64::NAN, f64::NAN, f64::NAN);
+        let (cm, cc, ck) = key;
+        let s = &self.structure;
+        let a = &mut self.a_matrix;
+        a.clear();
+        let entry = |i: usize, j: usize| {
+            cm * s.mass[(i, j)] + cc * s.damping[(i, j)] + ck * s.stiffness[(i, j)]
+        };
+        let singular = |dof: usize, what: &str| VehicleBridgeError::SingularStepMatrix {
+            dof,
+            reason: format!(
+                "the {what} block of A = {cm:e} M + {cc:e} C + {ck:e} K is singular or not finite"
+            ),
+        };
+        let m = self.scenario.bridge.n_modes();
+        for j in 0..m {
+            if !a.push1(j, entry(j, j)) {
+                return Err(singular(j, "bridge-mode"));
+            }
+        }
+        for (k, &iw) in self.wheel_dof.iter().enumerate() {
+            let ok = match self.body_dof[k] {
+                None => a.push1(iw, entry(iw, iw)),
+                Some(ib) => a.push2(
+                    iw,
+                    ib,
+                    entry(iw, iw),
+                    entry(iw, ib),
+                    entry(ib, iw),
+                    entry(ib, ib),
+                ),
+            };
+            if !ok {
+                return Err(singular(iw, "wheel"));
+            }
+        }
+        self.a_coefficients = key;
+        Ok(())
+    }
+}
