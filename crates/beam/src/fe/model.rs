@@ -17,9 +17,9 @@ use crate::modal::Derivative;
 pub struct Section {
     /// Segment length \[m\].
     pub length: f64,
-    /// Bending stiffness EI [N m²].
+    /// Bending stiffness EI \[N m²\].
     pub bending_stiffness: f64,
-    /// Mass per unit length ρA [kg/m].
+    /// Mass per unit length ρA \[kg/m\].
     pub mass_per_length: f64,
 }
 

@@ -7,11 +7,11 @@ pub enum SupportKind {
     Pinned,
     /// w = 0 and θ = 0.
     Clamped,
-    /// Elastic bearing: translational spring k_w [N/m] and rotational spring k_θ [N m/rad].
+    /// Elastic bearing: translational spring k_w \[N/m\] and rotational spring k_θ \[N m/rad\].
     Spring {
-        /// Translational stiffness [N/m].
+        /// Translational stiffness \[N/m\].
         translational: f64,
-        /// Rotational stiffness [N m/rad].
+        /// Rotational stiffness \[N m/rad\].
         rotational: f64,
     },
 }
@@ -32,6 +32,6 @@ pub struct PointMass {
     pub x: f64,
     /// Mass \[kg\].
     pub mass: f64,
-    /// Rotary inertia [kg m²].
+    /// Rotary inertia \[kg m²\].
     pub rotary_inertia: f64,
 }
