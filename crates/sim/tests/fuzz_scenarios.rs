@@ -1,5 +1,5 @@
 //! Mutation fuzzing of the scenario reader (`sim::config`) over the shipped examples
-//! (`examples/*.toml`) and the built-in default scenario.
+//! (`examples/*.toml`, which include the built-in default scenario).
 //!
 //! Each case mutates an example: numeric values replaced by 0, −1, 1e-300, 1e300, NaN/inf,
 //! huge integers or strings; keys deleted, duplicated or renamed; sections removed; strings
@@ -59,7 +59,7 @@ fn repo() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
 }
 
-/// The shipped examples and the default scenario: (name, text).
+/// The shipped examples (the default scenario among them): (name, text).
 fn seeds() -> Vec<(String, String)> {
     let mut out = Vec::new();
     let mut paths: Vec<PathBuf> = std::fs::read_dir(repo().join("examples"))
