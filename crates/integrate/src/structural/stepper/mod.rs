@@ -151,6 +151,19 @@ impl StructuralStepper {
         q: &[f64],
         v: &[f64],
     ) -> Result<(), IntegrateError> {
+        self.restart_state(problem, t, q, v)?;
+        self.consistent_acceleration(problem)
+    }
+
+    /// The common part of the restarts: checks the arguments, evaluates the internal force at
+    /// `q` and sets `(t, q, v)`, clearing the step history (not the acceleration).
+    fn restart_state<P: StructuralSystem + ?Sized>(
+        &mut self,
+        problem: &mut P,
+        t: f64,
+        q: &[f64],
+        v: &[f64],
+    ) -> Result<(), IntegrateError> {
         self.check_problem(problem)?;
         check_time("t", t)?;
         check_vector("q", q, self.q.len())?;
@@ -165,7 +178,7 @@ impl StructuralStepper {
         self.v.copy_from_slice(v);
         self.last_step = None;
         self.dt_prev = None;
-        self.consistent_acceleration(problem)
+        Ok(())
     }
 
     /// Restarts at `(t, q, v)` with the given acceleration `a` instead of the consistent one
@@ -181,22 +194,9 @@ impl StructuralStepper {
         v: &[f64],
         a: &[f64],
     ) -> Result<(), IntegrateError> {
-        self.check_problem(problem)?;
-        check_time("t", t)?;
-        check_vector("q", q, self.q.len())?;
-        check_vector("v", v, self.q.len())?;
         check_vector("a", a, self.q.len())?;
-        let f_int = &mut self.work.f_int;
-        problem.internal_force(q, f_int);
-        self.stats.f_evals += 1;
-        finite_or_error(f_int, t)?;
-        self.f_int.copy_from_slice(f_int);
-        self.t = t;
-        self.q.copy_from_slice(q);
-        self.v.copy_from_slice(v);
+        self.restart_state(problem, t, q, v)?;
         self.a.copy_from_slice(a);
-        self.last_step = None;
-        self.dt_prev = None;
         Ok(())
     }
 
