@@ -34,6 +34,19 @@ pub struct Grid {
 }
 
 impl Grid {
+    /// `Ok` when an array named `name` has `found` = one value per element, else a
+    /// [`ContactError::SizeMismatch`] naming it.
+    pub(crate) fn check_len(&self, name: &'static str, found: usize) -> Result<(), ContactError> {
+        if found != self.len() {
+            return Err(ContactError::SizeMismatch {
+                name,
+                expected: self.len(),
+                found,
+            });
+        }
+        Ok(())
+    }
+
     /// A validated grid: 1 ≤ nx, ny ≤ [`MAX_ELEMENTS_PER_DIRECTION`], nx·ny ≤ [`MAX_ELEMENTS`]
     /// (checked before anything is allocated; the error states the memory the solvers would
     /// need, [`Grid::workspace_bytes`]), element sizes in [`ELEMENT_SIZE_RANGE`], finite origin.

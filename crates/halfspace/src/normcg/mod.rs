@@ -227,14 +227,7 @@ impl NormalSolver {
     }
 
     fn check_len(&self, name: &'static str, found: usize) -> Result<(), ContactError> {
-        if found != self.grid.len() {
-            return Err(ContactError::SizeMismatch {
-                name,
-                expected: self.grid.len(),
-                found,
-            });
-        }
-        Ok(())
+        self.grid.check_len(name, found)
     }
 
     /// Solve the normal contact problem for the undeformed gap `gap` (per element, \[m\];

@@ -318,14 +318,7 @@ impl TangentialSolver {
     }
 
     pub(super) fn check_len(&self, name: &'static str, found: usize) -> Result<(), ContactError> {
-        if found != self.grid.len() {
-            return Err(ContactError::SizeMismatch {
-                name,
-                expected: self.grid.len(),
-                found,
-            });
-        }
-        Ok(())
+        self.grid.check_len(name, found)
     }
 
     /// Use `pressure` as the previous step's pressure p_n' in the coupling term of the next
