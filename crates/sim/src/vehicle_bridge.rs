@@ -73,6 +73,7 @@ pub mod irregularity;
 pub mod linalg;
 mod outputs;
 pub mod radau;
+mod rigid;
 pub mod run;
 mod scenario;
 mod step;
@@ -135,6 +136,8 @@ pub struct Simulation {
     traction: Option<traction::Traction>,
     /// The Radau5 path (`None` = the structural method of the scenario; see [`radau`]).
     radau: Option<radau::RadauPath>,
+    /// Rigid contacts: constraint gradients, projection state (module `rigid`).
+    rigid: rigid::RigidWork,
 }
 
 #[derive(Debug, Default)]

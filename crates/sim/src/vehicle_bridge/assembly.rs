@@ -201,6 +201,7 @@ impl Simulation {
         scenario
             .bridge
             .eval_all(scenario.output_point, Derivative::Shape, &mut output_shapes)?;
+        let rigid = super::rigid::RigidWork::new(scenario.contact == ContactModel::Rigid, nw, m, n);
         let mut sim = Self {
             laws,
             structure,
@@ -225,6 +226,7 @@ impl Simulation {
             scenario,
             traction: None,
             radau: None,
+            rigid,
         };
         sim.initial_samples()?;
         Ok(sim)

@@ -168,6 +168,7 @@ impl Simulation {
         for i in 0..n {
             self.work.x[i] = self.eq.q_pred[i] + c_qa * self.stepper.a()[i];
         }
+        self.rigid_setup().map_err(fatal)?;
         if self.scenario.coupling.solver == CouplingSolver::QuasiNewton {
             self.extrapolated_start(s);
         }
@@ -199,6 +200,7 @@ impl Simulation {
                     fatal: None,
                 });
             }
+            self.rigid_constraints();
             let w = &mut self.work;
             contact_iterations += w.outputs.iter().map(|o| o.iterations).sum::<usize>();
             if it > 1 {
@@ -266,7 +268,7 @@ impl Simulation {
                     for k in 0..nw {
                         let rigid = self.laws[k].is_rigid();
                         let active = if rigid {
-                            self.forces[k] > 0.0 || w.delta[k] > 0.0
+                            self.in_contact[k] && !self.rigid.released[k]
                         } else {
                             w.outputs[k].stiffness > 0.0
                         };
@@ -278,7 +280,11 @@ impl Simulation {
                             } else {
                                 1.0 / w.outputs[k].stiffness
                             };
-                            w.delta_tilde[a] = if rigid { w.delta[k] } else { 0.0 };
+                            w.delta_tilde[a] = if rigid {
+                                self.rigid.residual[k]
+                            } else {
+                                0.0
+                            };
                             w.active.push(k);
                         }
                     }
@@ -317,8 +323,16 @@ impl Simulation {
                     clamped = false;
                     for (a, &k) in w.active.iter().enumerate() {
                         if self.laws[k].is_rigid() {
-                            clamped |= self.forces[k] + w.df[a] < 0.0;
-                            let f_new = (self.forces[k] + w.df[a]).max(0.0);
+                            // A multiplier that would pull releases the wheel for the step
+                            // (module `rigid`): it flies freely, F = 0.
+                            let release = self.forces[k] + w.df[a] < 0.0;
+                            clamped |= release;
+                            self.rigid.released[k] |= release;
+                            let f_new = if release {
+                                0.0
+                            } else {
+                                self.forces[k] + w.df[a]
+                            };
                             w.last_df[k] = f_new - self.forces[k];
                             self.forces[k] = f_new;
                         }
@@ -412,6 +426,7 @@ impl Simulation {
         let finished = self.stepper.finish_step(&mut self.structure, dt, &x);
         self.work.x = x;
         finished.map_err(|e| fatal(e.into()))?;
+        self.rigid_finish(dt).map_err(fatal)?;
         self.stats.steps += 1;
         self.stats.iterations += iterations;
         self.stats.max_iterations = self.stats.max_iterations.max(iterations);
@@ -422,13 +437,23 @@ impl Simulation {
         for k in 0..nw {
             let iw = self.wheel_dof[k];
             let contact = self.work.outputs[k];
-            let touching = contact.force > 0.0;
+            let rigid = self.laws[k].is_rigid();
+            // A rigid wheel is in contact while it is held on the rail (module `rigid`).
+            let touching = if rigid {
+                self.rigid.attached[k]
+            } else {
+                contact.force > 0.0
+            };
             if self.in_contact[k] && !touching {
                 self.loss_events += 1;
                 self.wheel_loss_events[k] += 1;
             }
             self.in_contact[k] = touching;
-            self.forces[k] = contact.force;
+            self.forces[k] = if rigid && !touching {
+                0.0
+            } else {
+                contact.force
+            };
             let sample = &mut self.samples[k];
             sample.wheel_displacement = q[iw];
             sample.wheel_acceleration = a[iw];

@@ -1,0 +1,249 @@
+//! The rigid wheel–rail contact as a moving mass (references.md §D1.2): while a wheel is on
+//! the rail its vertical motion is that of the rail point under it,
+//!
+//! ```text
+//! z_w = w(x_k, t) − r(x_k),   x_k = x_k0 + c t,   δ = z_w − w(x_k) + r(x_k) = 0,
+//! δ̈ = z̈_w − Σ_j (w_j q̈_j + 2c w_j' q̇_j + c² w_j'' q_j) + c² r'' = 0,
+//! ```
+//!
+//! so the wheel's mass rides on the bridge with its convective (Coriolis and centripetal)
+//! terms: eliminating z̈_w and the multiplier F from the wheel row gives the glued-mass modal
+//! equations `(M + m_w φφᵀ) q̈ + (C + 2c m_w φφ'ᵀ) q̇ + (K + c² m_w φφ''ᵀ) q = f` of
+//! references.md §D1.2 (φ = w_j(x_k), φ' and φ'' its slope and curvature).
+//!
+//! # Index reduction and projection
+//! The constraint is imposed at the *acceleration* level (index 1) in every step, with the
+//! step's own kinematics `a = (x − q̃)/c_qa`, `v = ṽ + c_va a` (references.md §D4.2):
+//!
+//! ```text
+//! C_k(x) = c_qa δ̈_{n+1}(x) = u_kᵀ x + b_k = 0,
+//! u_k = +1 on the wheel, −(w_j + 2c c_va w_j' + c_qa c² w_j'') on mode j,
+//! ```
+//!
+//! a linear constraint with the force direction ĝ_k of the compliant laws, so the
+//! Sherman–Morrison / Woodbury update of the coupling ([`super::linalg::contact_update`],
+//! compliance 0, δ̃ = C_k) solves it in O(n). After each step the wheel is projected back
+//! onto the rail (displacement and velocity, [`Simulation::rigid_finish`]); the projection
+//! removes the O(Δt³) drift of the acceleration-level constraint. A displacement-level
+//! (index-3) multiplier, by contrast, leaves the wheel's velocity and acceleration as
+//! differences of its prescribed positions, which the trapezoidal rule (ρ∞ = 1) turns into an
+//! undamped 2Δt oscillation of the multiplier after any slope kink; here the wheel carries no
+//! memory of that kind and every integrator gives a smooth contact force.
+//!
+//! # Loss of contact and re-contact
+//! * A wheel on the rail whose multiplier would become negative is released for the step
+//!   (F = 0; it flies freely under gravity and its suspension).
+//! * Projection and impacts use the mass metric of the wheel and the bridge point: with
+//!   `S = Σ_j w_j²/M_j`, a gap error δ (or a relative velocity δ̇ = ż_w − ẇ(x_k) + c r') is
+//!   removed by `Δz_w = −δ/(1 + m_w S)`, `Δq_j = m_w w_j δ/(M_j (1 + m_w S))` — for the
+//!   velocity this is a perfectly inelastic (plastic) impact with the impulse
+//!   `Π = m_w δ̇/(1 + m_w S)`, which conserves the momentum of wheel plus bridge (a massless
+//!   wheel simply takes the rail's motion).
+//! * A flying wheel found penetrating the rail at the end of a step (δ > 0) has landed: it is
+//!   projected onto the rail and, if it still approaches (δ̇ > 0), stopped by the plastic
+//!   impact; it is then on the rail again.
+//! * A wheel on the rail that meets a slope kink (the span ends, a kinked irregularity) needs
+//!   a velocity jump; if the impulse to follow the rail, added to the step's contact impulse
+//!   Δt F, would pull (Δt F + Π < 0), the wheel leaves the rail with its own velocity instead.
+
+use beam::Derivative;
+
+use super::{Simulation, VehicleBridgeError};
+
+/// Step of the central differences of the rail irregularity's slope and curvature \[m\]
+/// (truncation h² r⁗/12 and round-off ε r/h² both far below the curvature of any profile the
+/// scenario validation admits).
+const RAIL_DIFFERENCE_STEP: f64 = 1e-4;
+
+/// Work space and state of the rigid contacts (preallocated; nothing is allocated per step).
+#[derive(Debug, Default)]
+pub(super) struct RigidWork {
+    /// Per wheel: mode slopes w_j' and curvatures w_j'' at the wheel (m entries each).
+    slope: Vec<Vec<f64>>,
+    curvature: Vec<Vec<f64>>,
+    /// Per wheel: rail slope r' and curvature r'' at the wheel.
+    rail_slope: Vec<f64>,
+    rail_curvature: Vec<f64>,
+    /// Per wheel: the constraint gradient u_k (n entries) and offset b_k \[m\].
+    gradient: Vec<Vec<f64>>,
+    offset: Vec<f64>,
+    /// Per wheel: the constraint value C_k(x) at the current iterate \[m\].
+    pub(super) residual: Vec<f64>,
+    /// Per wheel: released in this step (its multiplier would have become negative).
+    pub(super) released: Vec<bool>,
+    /// Per wheel: on the rail at the end of the step.
+    pub(super) attached: Vec<bool>,
+    /// State copies for the projection (n entries each).
+    q: Vec<f64>,
+    v: Vec<f64>,
+    a: Vec<f64>,
+}
+
+impl RigidWork {
+    /// Work space for `nw` wheels, `m` modes and `n` DOFs; empty unless `rigid`.
+    pub(super) fn new(rigid: bool, nw: usize, m: usize, n: usize) -> Self {
+        if !rigid {
+            return Self::default();
+        }
+        Self {
+            slope: vec![vec![0.0; m]; nw],
+            curvature: vec![vec![0.0; m]; nw],
+            rail_slope: vec![0.0; nw],
+            rail_curvature: vec![0.0; nw],
+            gradient: vec![vec![0.0; n]; nw],
+            offset: vec![0.0; nw],
+            residual: vec![0.0; nw],
+            released: vec![false; nw],
+            attached: vec![true; nw],
+            q: vec![0.0; n],
+            v: vec![0.0; n],
+            a: vec![0.0; n],
+        }
+    }
+
+    /// `true` if the work space was built for rigid contacts.
+    fn is_used(&self) -> bool {
+        !self.gradient.is_empty()
+    }
+}
+
+impl Simulation {
+    /// Slope and curvature of the modes and of the rail under every wheel at the step's end
+    /// (after [`Simulation::wheel_geometry`]), and the constraint gradients u_k and offsets
+    /// b_k of the step (module documentation):
+    /// `b_k = −q̃_w + Σ_j [w_j q̃_j − 2c w_j' (c_qa ṽ_j − c_va q̃_j)] + c_qa c² r''`.
+    pub(super) fn rigid_setup(&mut self) -> Result<(), VehicleBridgeError> {
+        if !self.rigid.is_used() {
+            return Ok(());
+        }
+        let basis = &*self.scenario.bridge;
+        let length = basis.length();
+        let m = basis.n_modes();
+        let c = self.scenario.speed;
+        let (c_qa, c_va) = (
+            self.eq.displacement_per_acceleration,
+            self.eq.velocity_per_acceleration,
+        );
+        let (q_pred, v_pred) = (&self.eq.q_pred, &self.eq.v_pred);
+        let rw = &mut self.rigid;
+        for k in 0..self.scenario.wheels.len() {
+            let x = self.samples[k].position;
+            if (0.0..=length).contains(&x) {
+                basis.eval_all(x, Derivative::Slope, &mut rw.slope[k])?;
+                basis.eval_all(x, Derivative::Curvature, &mut rw.curvature[k])?;
+            } else {
+                rw.slope[k].fill(0.0);
+                rw.curvature[k].fill(0.0);
+            }
+            let irr = &self.scenario.irregularity;
+            let h = RAIL_DIFFERENCE_STEP;
+            let (r_minus, r0, r_plus) = (irr.height(x - h), irr.height(x), irr.height(x + h));
+            rw.rail_slope[k] = (r_plus - r_minus) / (2.0 * h);
+            rw.rail_curvature[k] = (r_plus - 2.0 * r0 + r_minus) / (h * h);
+            let iw = self.wheel_dof[k];
+            let shapes = &self.work.shape_at_wheel[k];
+            let (slope, curv) = (&rw.slope[k], &rw.curvature[k]);
+            let u = &mut rw.gradient[k];
+            u.fill(0.0);
+            u[iw] = 1.0;
+            let mut b = -q_pred[iw] + c_qa * c * c * rw.rail_curvature[k];
+            for j in 0..m {
+                u[j] = -(shapes[j] + 2.0 * c * c_va * slope[j] + c_qa * c * c * curv[j]);
+                b += shapes[j] * q_pred[j] - 2.0 * c * slope[j] * (c_qa * v_pred[j] - c_va * q_pred[j]);
+            }
+            rw.offset[k] = b;
+            rw.released[k] = false;
+        }
+        Ok(())
+    }
+
+    /// For the rigid wheels at the iterate `work.x` (after
+    /// [`Simulation::evaluate_contacts`]): the constraint gradient u_k replaces the approach
+    /// gradient v_k of the coupling update, and `rigid.residual` gets C_k(x) = u_kᵀx + b_k.
+    pub(super) fn rigid_constraints(&mut self) {
+        if !self.rigid.is_used() {
+            return;
+        }
+        let w = &mut self.work;
+        let rw = &mut self.rigid;
+        for k in 0..rw.gradient.len() {
+            w.v[k].copy_from_slice(&rw.gradient[k]);
+            rw.residual[k] = super::linalg::dot(&rw.gradient[k], &w.x) + rw.offset[k];
+        }
+    }
+
+    /// After an accepted step: projects the wheels on the rail back onto it, lands the flying
+    /// wheels that reached it, releases those that a slope kink throws off (module
+    /// documentation), and restarts the stepper at the projected state if anything moved.
+    /// `rigid.attached` gets the new contact state; `work.delta` the approach.
+    pub(super) fn rigid_finish(&mut self, dt: f64) -> Result<(), VehicleBridgeError> {
+        if !self.rigid.is_used() {
+            return Ok(());
+        }
+        let m = self.scenario.bridge.n_modes();
+        let c = self.scenario.speed;
+        let rw = &mut self.rigid;
+        rw.q.copy_from_slice(self.stepper.q());
+        rw.v.copy_from_slice(self.stepper.v());
+        rw.a.copy_from_slice(self.stepper.a());
+        let mut moved = false;
+        for k in 0..self.scenario.wheels.len() {
+            let iw = self.wheel_dof[k];
+            let shapes = &self.work.shape_at_wheel[k];
+            let mass = self.scenario.wheels[k].wheel_mass;
+            // S = Σ w_j²/M_j and the wheel's share 1/(1 + m_w S) of a correction.
+            let s: f64 = (0..m)
+                .map(|j| shapes[j] * shapes[j] / self.structure.mass[(j, j)])
+                .sum();
+            let wheel_share = 1.0 / (1.0 + mass * s);
+            let gap = |q: &[f64]| -> f64 {
+                q[iw] - (0..m).map(|j| shapes[j] * q[j]).sum::<f64>() + self.work.r_at_wheel[k]
+            };
+            let rate = |q: &[f64], v: &[f64]| -> f64 {
+                v[iw]
+                    - (0..m)
+                        .map(|j| shapes[j] * v[j] + c * rw.slope[k][j] * q[j])
+                        .sum::<f64>()
+                    + c * rw.rail_slope[k]
+            };
+            let held = self.in_contact[k] && !rw.released[k];
+            let delta = gap(&rw.q);
+            let mut attached = held;
+            if held || delta > 0.0 {
+                // Onto the rail in the mass metric (for a held wheel an O(Δt³) drift).
+                rw.q[iw] -= wheel_share * delta;
+                for j in 0..m {
+                    rw.q[j] += wheel_share * mass * shapes[j] * delta / self.structure.mass[(j, j)];
+                }
+                let rel = rate(&rw.q, &rw.v);
+                let impulse = wheel_share * mass * rel;
+                let force = self.forces[k];
+                if held && dt * force + impulse < 0.0 {
+                    // A kink throws the wheel off: it keeps its own velocity.
+                    attached = false;
+                } else if held || rel > 0.0 {
+                    rw.v[iw] -= wheel_share * rel;
+                    for j in 0..m {
+                        rw.v[j] += wheel_share * mass * shapes[j] * rel / self.structure.mass[(j, j)];
+                    }
+                    attached = true;
+                } else {
+                    // Landed while already separating: on the rail, not held.
+                    attached = false;
+                }
+                moved = true;
+            }
+            rw.attached[k] = attached;
+        }
+        if moved {
+            let t = self.stepper.t();
+            self.stepper
+                .restart_with_acceleration(&mut self.structure, t, &rw.q, &rw.v, &rw.a)?;
+        }
+        let q = self.stepper.q();
+        for k in 0..self.scenario.wheels.len() {
+            self.work.delta[k] = self.work.approach(k, self.wheel_dof[k], q);
+        }
+        Ok(())
+    }
+}
