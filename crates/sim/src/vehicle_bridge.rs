@@ -20,10 +20,11 @@
 //!   F closes the row. In loss of contact (F = 0) the row becomes the first-order suspension
 //!   balance `P + k_s(z_b − z_w) + c_s(ż_b − ż_w) = 0` (the massless wheel hangs on the body).
 //! * Contact: the approach `δ_k = z_w − w(x_k) + r(x_k)` (r: rail irregularity, positive up)
-//!   and `F_k = F(δ_k)` by a [`ContactLaw`]: `rigid` (δ_k = 0 while F_k > 0, a Lagrange
-//!   multiplier: the wheel follows the rail, which is the moving-mass model of references.md
-//!   §D1.2 with all its inertia and convective terms), `hertz`, or `bem`. Loss of contact
-//!   (F = 0) and re-contact are handled by every law.
+//!   and `F_k = F(δ_k)` by a [`ContactLaw`]: `rigid` (δ_k = 0 while F_k > 0: the wheel follows
+//!   the rail, which is the moving-mass model of references.md §D1.2 with all its inertia and
+//!   convective terms, imposed as an acceleration-level constraint with projection onto the
+//!   rail and plastic re-contact, module `rigid`), `hertz`, or `bem`. Loss of contact (F = 0)
+//!   and re-contact are handled by every law.
 //!
 //! # Time step (references.md §D4.2)
 //! The contact-free system `M x'' + C x' + K x = f` (bridge modes and vehicle DOFs; gravity in
@@ -48,8 +49,8 @@
 //! * `newton`: the same linearisation solved densely ([`linalg::dense_contact_update`]), the
 //!   reference.
 //!
-//! A rigid contact enters all of them as a zero compliance (an exact constraint); Picard needs
-//! compliant contacts. The quasi-Newton iteration starts from the predictor corrected by the
+//! A rigid contact enters all of them as a zero compliance (an exact constraint) whose row v_k
+//! is its acceleration-level gradient u_k (module `rigid`); Picard needs compliant contacts. The quasi-Newton iteration starts from the predictor corrected by the
 //! previous step's contact linearisation (`F ≈ F_n + k_n(δ − δ_n)`, column forces carried with
 //! the wheel), computes the BEM tangent at the first contact evaluation of a step only, and
 //! accepts the corrected state with the linearised forces once every predicted force

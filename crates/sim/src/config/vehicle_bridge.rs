@@ -355,15 +355,6 @@ pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError
         params.method(method_name)?
     };
     let mut warnings = Vec::new();
-    if contact == ContactModel::Rigid
-        && !method_name.trim().eq_ignore_ascii_case("radau5")
-        && matches!(method, StructuralMethod::Newmark { gamma, .. } if gamma <= 0.5)
-    {
-        warnings.push(
-            "rigid contact with the undamped Newmark rule (gamma = 0.5): the contact multiplier can ring and grow at a slope kink (a wheel entering a deflected span); [integrator] method = \"generalized_alpha\" or \"hht\" damps it (docs/vehicle_bridge.md)"
-                .to_string(),
-        );
-    }
     let dt = integ.and_then(|i| i.dt).unwrap_or(DEFAULT_DT);
     let duration = integ.and_then(|i| i.duration);
 
