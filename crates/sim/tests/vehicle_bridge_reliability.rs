@@ -147,7 +147,12 @@ fn heavy_moving_mass_runs_with_the_defaults_and_matches_the_glued_mass() {
     let mut failures = Vec::new();
     let mut errors = Vec::new();
     for (name, method, tol, dt) in [
-        ("newmark", StructuralMethod::average_acceleration(), 1e-5, dt),
+        (
+            "newmark",
+            StructuralMethod::average_acceleration(),
+            1e-5,
+            dt,
+        ),
         ("hht", StructuralMethod::hht(-0.05).unwrap(), 1e-5, dt),
         (
             "generalized_alpha",

@@ -151,7 +151,11 @@ fn glued_mass_acceleration(
     }
     for col in 0..n {
         let p = (col..n)
-            .max_by(|&r, &s| a[r * (n + 1) + col].abs().total_cmp(&a[s * (n + 1) + col].abs()))
+            .max_by(|&r, &s| {
+                a[r * (n + 1) + col]
+                    .abs()
+                    .total_cmp(&a[s * (n + 1) + col].abs())
+            })
             .unwrap();
         for k in 0..=n {
             a.swap(col * (n + 1) + k, p * (n + 1) + k);
@@ -165,7 +169,9 @@ fn glued_mass_acceleration(
             }
         }
     }
-    let acc: Vec<f64> = (0..n).map(|i| a[i * (n + 1) + n] / a[i * (n + 1) + i]).collect();
+    let acc: Vec<f64> = (0..n)
+        .map(|i| a[i * (n + 1) + n] / a[i * (n + 1) + i])
+        .collect();
     let zdd = dot(&phi, &acc) + conv;
     (acc, zdd)
 }
@@ -189,7 +195,8 @@ fn heavy_moving_mass_matches_the_glued_mass_equations() {
     let t_end = length / c;
     let h = 1.25e-6;
     let mut mid = vec![0.0; modes];
-    b.eval_all(0.5 * length, Derivative::Shape, &mut mid).unwrap();
+    b.eval_all(0.5 * length, Derivative::Shape, &mut mid)
+        .unwrap();
     let steps = (t_end / h - 1e-9).ceil() as usize;
     // Reference (w_mid, F) at t_i = i h.
     let mut reference = vec![(0.0, mass * GRAVITY)];
@@ -217,7 +224,9 @@ fn heavy_moving_mass_matches_the_glued_mass_equations() {
     }
     let pull = reference.iter().position(|r| r.1 < 0.0).unwrap();
     let t_pull = pull as f64 * h;
-    let peak = reference[..pull].iter().fold(0.0f64, |m, r| m.max(r.0.abs()));
+    let peak = reference[..pull]
+        .iter()
+        .fold(0.0f64, |m, r| m.max(r.0.abs()));
     let load = mass * GRAVITY;
     let errors = |method: StructuralMethod, dt: f64| {
         let wheel = WheelSpec {
@@ -314,7 +323,10 @@ fn quarter_car_with_the_trapezoidal_rule_is_smooth() {
         assert_eq!(fine.losses, 0);
         assert!(err < 1e-2 * load, "{err}");
         let (ring, ring_ref) = (ringing(&coarse.force), ringing(&sampled));
-        assert!(ring < 5e-3 * load && ring < 1.5 * ring_ref, "{ring} vs {ring_ref}");
+        assert!(
+            ring < 5e-3 * load && ring < 1.5 * ring_ref,
+            "{ring} vs {ring_ref}"
+        );
     }
 }
 
@@ -401,6 +413,8 @@ fn loss_of_contact_and_landing_with_every_integrator() {
         assert!(hist.last().unwrap().3 > 0.0, "{name}: not back on the rail");
         flights.push(flight);
     }
-    let spread = flights.iter().fold(0.0f64, |m, &f| m.max((f - flights[0]).abs()));
+    let spread = flights
+        .iter()
+        .fold(0.0f64, |m, &f| m.max((f - flights[0]).abs()));
     assert!(spread <= 3.0 * dt + 1e-12, "flight times {flights:?}");
 }

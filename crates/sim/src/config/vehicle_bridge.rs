@@ -354,7 +354,7 @@ pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError
     } else {
         params.method(method_name)?
     };
-    let mut warnings = Vec::new();
+    let warnings = Vec::new();
     let dt = integ.and_then(|i| i.dt).unwrap_or(DEFAULT_DT);
     let duration = integ.and_then(|i| i.duration);
 

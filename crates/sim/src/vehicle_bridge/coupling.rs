@@ -280,11 +280,7 @@ impl Simulation {
                             } else {
                                 1.0 / w.outputs[k].stiffness
                             };
-                            w.delta_tilde[a] = if rigid {
-                                self.rigid.residual[k]
-                            } else {
-                                0.0
-                            };
+                            w.delta_tilde[a] = if rigid { self.rigid.residual[k] } else { 0.0 };
                             w.active.push(k);
                         }
                     }

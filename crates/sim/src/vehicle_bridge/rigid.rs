@@ -33,15 +33,16 @@
 //! # Loss of contact and re-contact
 //! * A wheel on the rail whose multiplier would become negative is released for the step
 //!   (F = 0; it flies freely under gravity and its suspension).
-//! * Projection and impacts use the mass metric of the wheel and the bridge point: with
-//!   `S = Σ_j w_j²/M_j`, a gap error δ (or a relative velocity δ̇ = ż_w − ẇ(x_k) + c r') is
-//!   removed by `Δz_w = −δ/(1 + m_w S)`, `Δq_j = m_w w_j δ/(M_j (1 + m_w S))` — for the
-//!   velocity this is a perfectly inelastic (plastic) impact with the impulse
-//!   `Π = m_w δ̇/(1 + m_w S)`, which conserves the momentum of wheel plus bridge (a massless
-//!   wheel simply takes the rail's motion).
+//! * The projection moves the wheel onto the rail surface (Δz_w = −δ; the bridge state is left
+//!   as the step computed it) and removes the relative velocity δ̇ = ż_w − ẇ(x_k) + c r' in the
+//!   mass metric of the wheel and the bridge point: with `S = Σ_j w_j²/M_j`,
+//!   `Δż_w = −δ̇/(1 + m_w S)`, `Δq̇_j = m_w w_j δ̇/(M_j (1 + m_w S))`, a perfectly inelastic
+//!   (plastic) impact with the impulse `Π = m_w δ̇/(1 + m_w S)` that conserves the momentum of
+//!   wheel plus bridge (a massless wheel simply takes the rail's motion). For a wheel held on
+//!   the rail both corrections are of the order of the step's truncation error.
 //! * A flying wheel found penetrating the rail at the end of a step (δ > 0) has landed: it is
-//!   projected onto the rail and, if it still approaches (δ̇ > 0), stopped by the plastic
-//!   impact; it is then on the rail again.
+//!   put on the rail and, if it still approaches (δ̇ > 0), stopped by the plastic impact; it
+//!   is then on the rail again.
 //! * A wheel on the rail that meets a slope kink (the span ends, a kinked irregularity) needs
 //!   a velocity jump; if the impulse to follow the rail, added to the step's contact impulse
 //!   Δt F, would pull (Δt F + Π < 0), the wheel leaves the rail with its own velocity instead.
@@ -149,7 +150,8 @@ impl Simulation {
             let mut b = -q_pred[iw] + c_qa * c * c * rw.rail_curvature[k];
             for j in 0..m {
                 u[j] = -(shapes[j] + 2.0 * c * c_va * slope[j] + c_qa * c * c * curv[j]);
-                b += shapes[j] * q_pred[j] - 2.0 * c * slope[j] * (c_qa * v_pred[j] - c_va * q_pred[j]);
+                b += shapes[j] * q_pred[j]
+                    - 2.0 * c * slope[j] * (c_qa * v_pred[j] - c_va * q_pred[j]);
             }
             rw.offset[k] = b;
             rw.released[k] = false;
@@ -210,11 +212,9 @@ impl Simulation {
             let delta = gap(&rw.q);
             let mut attached = held;
             if held || delta > 0.0 {
-                // Onto the rail in the mass metric (for a held wheel an O(Δt³) drift).
-                rw.q[iw] -= wheel_share * delta;
-                for j in 0..m {
-                    rw.q[j] += wheel_share * mass * shapes[j] * delta / self.structure.mass[(j, j)];
-                }
+                // The wheel back onto the rail (for a held wheel an O(Δt³) drift; for a
+                // landing the penetration of its last step).
+                rw.q[iw] -= delta;
                 let rel = rate(&rw.q, &rw.v);
                 let impulse = wheel_share * mass * rel;
                 let force = self.forces[k];
@@ -224,7 +224,8 @@ impl Simulation {
                 } else if held || rel > 0.0 {
                     rw.v[iw] -= wheel_share * rel;
                     for j in 0..m {
-                        rw.v[j] += wheel_share * mass * shapes[j] * rel / self.structure.mass[(j, j)];
+                        rw.v[j] +=
+                            wheel_share * mass * shapes[j] * rel / self.structure.mass[(j, j)];
                     }
                     attached = true;
                 } else {
