@@ -229,6 +229,7 @@ impl Simulation {
             rigid,
         };
         sim.initial_samples()?;
+        sim.rigid_start()?;
         Ok(sim)
     }
 

@@ -17,13 +17,24 @@
 //!
 //! ```text
 //! C_k(x) = c_qa δ̈_{n+1}(x) = u_kᵀ x + b_k = 0,
-//! u_k = +1 on the wheel, −(w_j + 2c c_va w_j' + c_qa c² w_j'') on mode j,
+//! u_k = +1 on the wheel, −(w_j + 2c c_va w_j' + c_qa c² w_j'') on mode j
 //! ```
 //!
+//! (for the trapezoidal rule and backward Euler). The α-schemes (HHT, generalized-α) weight it
+//! like their balance equation, inertia with α_m and the convective and rail terms with α_f,
+//!
+//! ```text
+//! (1 − α_m) ā_{n+1} + α_m ā_n = (1 − α_f) κ_{n+1} + α_f κ_n,
+//! ā = a_w − Σ_j w_j a_j,   κ = Σ_j (2c w_j' v_j + c² w_j'' q_j) − c² r'',
+//! ```
+//!
+//! so that the wheel row returns the contact force at t_{n+1} (imposing ā_{n+1} = κ_{n+1} alone
+//! made generalized-α's multiplier overshoot a jump of the rail curvature by
+//! (α_f − α_m)/(1 − α_f) and decay like ρ∞ⁿ). It is
 //! a linear constraint with the force direction ĝ_k of the compliant laws, so the
 //! Sherman–Morrison / Woodbury update of the coupling ([`super::linalg::contact_update`],
 //! compliance 0, δ̃ = C_k) solves it in O(n). After each step the wheel is projected back
-//! onto the rail (displacement and velocity, [`Simulation::rigid_finish`]); the projection
+//! onto the rail (displacement and velocity, `Simulation::rigid_finish`); the projection
 //! removes the O(Δt³) drift of the acceleration-level constraint. A displacement-level
 //! (index-3) multiplier, by contrast, leaves the wheel's velocity and acceleration as
 //! differences of its prescribed positions, which the trapezoidal rule (ρ∞ = 1) turns into an
@@ -68,6 +79,11 @@ pub(super) struct RigidWork {
     /// Per wheel: the constraint gradient u_k (n entries) and offset b_k \[m\].
     gradient: Vec<Vec<f64>>,
     offset: Vec<f64>,
+    /// Per wheel, at the start of the step (the α-schemes' old terms): the relative
+    /// acceleration `a_w − Σ_j w_j a_j` and the convective and rail terms
+    /// `Σ_j (2c w_j' v_j + c² w_j'' q_j) − c² r''` \[m/s²\].
+    old_relative_acceleration: Vec<f64>,
+    old_convective: Vec<f64>,
     /// Per wheel: the constraint value C_k(x) at the current iterate \[m\].
     pub(super) residual: Vec<f64>,
     /// Per wheel: released in this step (its multiplier would have become negative).
@@ -93,6 +109,8 @@ impl RigidWork {
             rail_curvature: vec![0.0; nw],
             gradient: vec![vec![0.0; n]; nw],
             offset: vec![0.0; nw],
+            old_relative_acceleration: vec![0.0; nw],
+            old_convective: vec![0.0; nw],
             residual: vec![0.0; nw],
             released: vec![false; nw],
             attached: vec![true; nw],
@@ -109,23 +127,11 @@ impl RigidWork {
 }
 
 impl Simulation {
-    /// Slope and curvature of the modes and of the rail under every wheel at the step's end
-    /// (after [`Simulation::wheel_geometry`]), and the constraint gradients u_k and offsets
-    /// b_k of the step (module documentation):
-    /// `b_k = −q̃_w + Σ_j [w_j q̃_j − 2c w_j' (c_qa ṽ_j − c_va q̃_j)] + c_qa c² r''`.
-    pub(super) fn rigid_setup(&mut self) -> Result<(), VehicleBridgeError> {
-        if !self.rigid.is_used() {
-            return Ok(());
-        }
+    /// Slope and curvature of the modes and of the rail under every wheel at the wheels'
+    /// current positions (`samples[k].position`, set by [`Simulation::wheel_geometry`]).
+    fn rigid_geometry(&mut self) -> Result<(), VehicleBridgeError> {
         let basis = &*self.scenario.bridge;
         let length = basis.length();
-        let m = basis.n_modes();
-        let c = self.scenario.speed;
-        let (c_qa, c_va) = (
-            self.eq.displacement_per_acceleration,
-            self.eq.velocity_per_acceleration,
-        );
-        let (q_pred, v_pred) = (&self.eq.q_pred, &self.eq.v_pred);
         let rw = &mut self.rigid;
         for k in 0..self.scenario.wheels.len() {
             let x = self.samples[k].position;
@@ -141,17 +147,80 @@ impl Simulation {
             let (r_minus, r0, r_plus) = (irr.height(x - h), irr.height(x), irr.height(x + h));
             rw.rail_slope[k] = (r_plus - r_minus) / (2.0 * h);
             rw.rail_curvature[k] = (r_plus - 2.0 * r0 + r_minus) / (h * h);
+        }
+        Ok(())
+    }
+
+    /// The old terms of the α-weighted constraint at the current state (after
+    /// [`Simulation::rigid_geometry`] at the current time): per wheel the relative acceleration
+    /// `a_w − Σ_j w_j a_j` and the convective and rail terms (module documentation).
+    fn rigid_old_terms(&mut self) {
+        let m = self.scenario.bridge.n_modes();
+        let c = self.scenario.speed;
+        let (q, v, a) = (self.stepper.q(), self.stepper.v(), self.stepper.a());
+        let rw = &mut self.rigid;
+        for k in 0..self.scenario.wheels.len() {
+            let shapes = &self.work.shape_at_wheel[k];
+            let (slope, curv) = (&rw.slope[k], &rw.curvature[k]);
+            let mut rel = a[self.wheel_dof[k]];
+            let mut conv = -c * c * rw.rail_curvature[k];
+            for j in 0..m {
+                rel -= shapes[j] * a[j];
+                conv += 2.0 * c * slope[j] * v[j] + c * c * curv[j] * q[j];
+            }
+            rw.old_relative_acceleration[k] = rel;
+            rw.old_convective[k] = conv;
+        }
+    }
+
+    /// The start of a run: the old terms of the first step (after
+    /// [`Simulation::wheel_geometry`] at t = 0).
+    pub(super) fn rigid_start(&mut self) -> Result<(), VehicleBridgeError> {
+        if !self.rigid.is_used() {
+            return Ok(());
+        }
+        self.rigid_geometry()?;
+        self.rigid_old_terms();
+        Ok(())
+    }
+
+    /// The geometry at the step's end (after [`Simulation::wheel_geometry`]) and the
+    /// constraint gradients u_k and offsets b_k of the step (module documentation):
+    /// with ρ = (1 − α_f)/(1 − α_m),
+    /// `u_k = +1 on the wheel, −(w_j + ρ (2c c_va w_j' + c_qa c² w_j''))` on mode j and
+    /// `b_k = −q̃_w + Σ_j [w_j q̃_j − 2ρc w_j' (c_qa ṽ_j − c_va q̃_j)] + ρ c_qa c² r''
+    ///  + c_qa (α_m ā_n − α_f κ_n)/(1 − α_m)` (ā_n, κ_n: the old relative acceleration and
+    /// convective terms).
+    pub(super) fn rigid_setup(&mut self) -> Result<(), VehicleBridgeError> {
+        if !self.rigid.is_used() {
+            return Ok(());
+        }
+        self.rigid_geometry()?;
+        let m = self.scenario.bridge.n_modes();
+        let c = self.scenario.speed;
+        let eq = &self.eq;
+        let (c_qa, c_va) = (
+            eq.displacement_per_acceleration,
+            eq.velocity_per_acceleration,
+        );
+        let rho = (1.0 - eq.alpha_f) / (1.0 - eq.alpha_m);
+        let rw = &mut self.rigid;
+        for k in 0..self.scenario.wheels.len() {
             let iw = self.wheel_dof[k];
             let shapes = &self.work.shape_at_wheel[k];
             let (slope, curv) = (&rw.slope[k], &rw.curvature[k]);
             let u = &mut rw.gradient[k];
             u.fill(0.0);
             u[iw] = 1.0;
-            let mut b = -q_pred[iw] + c_qa * c * c * rw.rail_curvature[k];
+            let old =
+                eq.alpha_m * rw.old_relative_acceleration[k] - eq.alpha_f * rw.old_convective[k];
+            let mut b = -eq.q_pred[iw]
+                + rho * c_qa * c * c * rw.rail_curvature[k]
+                + c_qa * old / (1.0 - eq.alpha_m);
             for j in 0..m {
-                u[j] = -(shapes[j] + 2.0 * c * c_va * slope[j] + c_qa * c * c * curv[j]);
-                b += shapes[j] * q_pred[j]
-                    - 2.0 * c * slope[j] * (c_qa * v_pred[j] - c_va * q_pred[j]);
+                u[j] = -(shapes[j] + rho * (2.0 * c * c_va * slope[j] + c_qa * c * c * curv[j]));
+                b += shapes[j] * eq.q_pred[j]
+                    - 2.0 * rho * c * slope[j] * (c_qa * eq.v_pred[j] - c_va * eq.q_pred[j]);
             }
             rw.offset[k] = b;
             rw.released[k] = false;
@@ -245,6 +314,7 @@ impl Simulation {
         for k in 0..self.scenario.wheels.len() {
             self.work.delta[k] = self.work.approach(k, self.wheel_dof[k], q);
         }
+        self.rigid_old_terms();
         Ok(())
     }
 }
