@@ -185,12 +185,14 @@ impl Simulation {
     }
 
     /// The geometry at the step's end (after [`Simulation::wheel_geometry`]) and the
-    /// constraint gradients u_k and offsets b_k of the step (module documentation):
-    /// with ρ = (1 − α_f)/(1 − α_m),
-    /// `u_k = +1 on the wheel, −(w_j + ρ (2c c_va w_j' + c_qa c² w_j''))` on mode j and
-    /// `b_k = −q̃_w + Σ_j [w_j q̃_j − 2ρc w_j' (c_qa ṽ_j − c_va q̃_j)] + ρ c_qa c² r''
-    ///  + c_qa (α_m ā_n − α_f κ_n)/(1 − α_m)` (ā_n, κ_n: the old relative acceleration and
-    /// convective terms).
+    /// constraint gradients u_k and offsets b_k of the step (module documentation), with
+    /// ρ = (1 − α_f)/(1 − α_m) and ā_n, κ_n the old relative acceleration and convective terms:
+    ///
+    /// ```text
+    /// u_k = +1 on the wheel, −(w_j + ρ (2c c_va w_j' + c_qa c² w_j'')) on mode j,
+    /// b_k = −q̃_w + Σ_j [w_j q̃_j − 2ρc w_j' (c_qa ṽ_j − c_va q̃_j)] + ρ c_qa c² r''
+    ///       + c_qa (α_m ā_n − α_f κ_n)/(1 − α_m).
+    /// ```
     pub(super) fn rigid_setup(&mut self) -> Result<(), VehicleBridgeError> {
         if !self.rigid.is_used() {
             return Ok(());
