@@ -18,6 +18,7 @@ pub mod stats;
 pub mod structural;
 
 pub use error::{CallbackError, IntegrateError};
+pub use lu::{DenseLu, LuScalar};
 pub use ode::{Method, OdeOptions, OdeStepper, OdeSystem};
 pub use stats::Stats;
 pub use structural::{
