@@ -463,7 +463,7 @@ impl BallDrop {
         let k = hertz_constant(&self.shape, &material)?;
         let reference = HertzImpact::new(self.mass, k, self.impact_speed(), self.gravity);
         let model = match self.model {
-            ForceModel::Hertz => ContactForce::hertz(k, self.damping),
+            ForceModel::Hertz => ContactForce::hertz(&self.shape, &material, self.damping)?,
             ForceModel::Bem { elements, tol } => {
                 // The largest patch: the Hertz approach at the first impact from the energy
                 // balance (the later impacts are no faster), or the static approach under m g.

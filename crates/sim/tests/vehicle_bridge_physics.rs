@@ -4,8 +4,8 @@
 use beam::{AnalyticBeam, Derivative, ModalBasis, ModalDamping, Support, UniformBeam};
 use integrate::structural::StructuralMethod;
 use sim::vehicle_bridge::{
-    ContactGeometry, ContactModel, CouplingSpec, GRAVITY, HertzLaw, Irregularity, Scenario,
-    Simulation, TrackSpectrum, WheelSpec,
+    ContactGeometry, ContactModel, CouplingSpec, GRAVITY, Irregularity, Scenario, Simulation,
+    TrackSpectrum, WheelSpec,
 };
 
 const L: f64 = 25.0;
@@ -248,7 +248,7 @@ fn energy_balance_of_a_conservative_run() {
         sc.irregularity = dip.clone();
         sc.duration = Some(0.5);
         sc.coupling.tol = 1e-12;
-        let c_h = HertzLaw::new(&geometry()).unwrap().coefficient;
+        let c_h = geometry().hertz().unwrap().coefficient();
         let b = basis(modes);
         let om = b.circular_frequencies().to_vec();
         let mut sim = Simulation::new(sc).unwrap();

@@ -5,8 +5,8 @@ use beam::{
 };
 use integrate::structural::StructuralMethod;
 use sim::vehicle_bridge::{
-    ContactGeometry, ContactModel, CouplingSolver, CouplingSpec, GRAVITY, HertzLaw, Irregularity,
-    Scenario, Simulation, WheelSpec,
+    ContactGeometry, ContactModel, CouplingSolver, CouplingSpec, GRAVITY, Irregularity, Scenario,
+    Simulation, WheelSpec,
 };
 
 const L: f64 = 25.0;
@@ -237,8 +237,8 @@ fn wheel_jumps_over_a_dip_with_every_model() {
 fn picard_threshold_matches_lambda_one() {
     let m_w = 900.0;
     let load = 100e3;
-    let hertz = HertzLaw::new(&geometry()).unwrap();
-    let delta = (load / hertz.coefficient).powf(2.0 / 3.0);
+    let hertz = geometry().hertz().unwrap();
+    let delta = (load / hertz.coefficient()).powf(2.0 / 3.0);
     let k_c = 1.5 * load / delta;
     let dt_star = (m_w / (0.25 * k_c)).sqrt();
     let simulation = |dt: f64, solver: CouplingSolver, max_halvings: usize| {

@@ -5,11 +5,11 @@ use beam::Derivative;
 use faer::{Mat, MatRef};
 use integrate::structural::{StepEquation, StructuralStepper, StructuralSystem};
 
+use halfspace::law::{ContactModel as LawModel, LawOutput};
+
+use super::contact::{columns, wheel_contact, wheel_error};
 use super::linalg::{BlockDiagonal, CapacitanceWork};
-use super::{
-    BemLaw, ContactLaw, ContactModel, ContactOutput, HertzLaw, RigidLaw, Scenario, Simulation,
-    SolverStats, VehicleBridgeError, WheelSample, Work, scenario,
-};
+use super::{Scenario, Simulation, SolverStats, VehicleBridgeError, WheelSample, Work, scenario};
 
 /// The contact-free linear structure (bridge modes and vehicle), for the stepper.
 pub(super) struct Structure {
@@ -112,15 +112,9 @@ impl Simulation {
         let force_scale = static_loads.iter().copied().fold(0.0, f64::max);
 
         // Contact laws.
-        let mut laws: Vec<Box<dyn ContactLaw>> = Vec::new();
+        let mut contacts = Vec::with_capacity(static_loads.len());
         for &load in &static_loads {
-            laws.push(match scenario.contact {
-                ContactModel::Rigid => Box::new(RigidLaw::default()),
-                ContactModel::Hertz => Box::new(HertzLaw::new(&scenario.geometry)?),
-                ContactModel::Bem { elements, tol } => {
-                    Box::new(BemLaw::new(&scenario.geometry, elements, 2.5 * load, tol)?)
-                }
-            });
+            contacts.push(wheel_contact(scenario.contact, &scenario.geometry, load)?);
         }
 
         // Static start.
@@ -128,7 +122,12 @@ impl Simulation {
         let mut forces = Vec::new();
         let mut contact_load = vec![0.0; n];
         for (k, w) in scenario.wheels.iter().enumerate() {
-            let delta = laws[k].static_approach(static_loads[k])?;
+            let delta = match &mut contacts[k] {
+                LawModel::Law(law) => law
+                    .static_approach(static_loads[k])
+                    .map_err(wheel_error(k))?,
+                LawModel::Rigid(_) => 0.0,
+            };
             let zw = delta - scenario.irregularity.height(w.position);
             q0[wheel_dof[k]] = zw;
             if let Some(ib) = body_dof[k] {
@@ -166,7 +165,7 @@ impl Simulation {
         // wheel row exactly, so (f_ext − C v − K q)_w = 0 there as well).
         let stepper = StructuralStepper::new(scenario.method, &mut structure, 0.0, &q0, &v0)?;
         let nw = scenario.wheels.len();
-        let ncols: Vec<usize> = laws.iter().map(|l| l.columns().len()).collect();
+        let ncols: Vec<usize> = contacts.iter().map(|c| columns(c).len()).collect();
         let work = Work {
             x: vec![0.0; n],
             r: vec![0.0; n],
@@ -183,7 +182,7 @@ impl Simulation {
             v: vec![vec![0.0; n]; nw],
             g_act: vec![vec![0.0; n]; nw],
             v_act: vec![vec![0.0; n]; nw],
-            outputs: vec![ContactOutput::default(); nw],
+            outputs: vec![LawOutput::default(); nw],
             delta: vec![0.0; nw],
             prev_force: vec![0.0; nw],
             last_df: vec![0.0; nw],
@@ -202,7 +201,7 @@ impl Simulation {
             .bridge
             .eval_all(scenario.output_point, Derivative::Shape, &mut output_shapes)?;
         let mut sim = Self {
-            laws,
+            contacts,
             structure,
             stepper,
             eq: StepEquation::default(),
@@ -238,16 +237,18 @@ impl Simulation {
             let q = self.stepper.q().to_vec();
             let zw = q[self.wheel_dof[k]];
             let delta = self.work.approach(k, self.wheel_dof[k], &q);
-            let mut out = if self.laws[k].is_rigid() {
-                ContactOutput {
+            let mut out = match &mut self.contacts[k] {
+                LawModel::Rigid(_) => LawOutput {
                     force: self.static_loads[k],
-                    ..ContactOutput::default()
+                    ..LawOutput::default()
+                },
+                LawModel::Law(law) => {
+                    let ncol = law.columns().len();
+                    let zero = vec![0.0; ncol];
+                    let mut cf = vec![0.0; ncol];
+                    law.evaluate(delta, &zero, &mut cf, true)
+                        .map_err(wheel_error(k))?
                 }
-            } else {
-                let ncol = self.laws[k].columns().len();
-                let zero = vec![0.0; ncol];
-                let mut cf = vec![0.0; ncol];
-                self.laws[k].evaluate(delta, &zero, &mut cf, true)?
             };
             out.iterations = 0;
             self.static_contact_stiffness[k] = out.stiffness;

@@ -2,9 +2,10 @@
 //! Picard, quasi-Newton (Sherman–Morrison / Woodbury) and Newton iterations, the
 //! extrapolated quasi-Newton start, and the floating-point floor of the contact forces.
 
+use super::contact::is_rigid;
 use super::linalg::{self, contact_update, dense_contact_update};
 use super::step::StepFailure;
-use super::{ContactOutput, CouplingSolver, Simulation, VehicleBridgeError};
+use super::{CouplingSolver, LawOutput, Simulation, VehicleBridgeError};
 
 impl Simulation {
     /// Quasi-Newton start without a contact evaluation: every contact law is replaced by its
@@ -17,10 +18,10 @@ impl Simulation {
     /// Skipped unless every wheel is in compliant contact with a known tangent.
     fn extrapolated_start(&mut self, s: f64) {
         let m = self.scenario.bridge.n_modes();
-        let nw = self.laws.len();
+        let nw = self.contacts.len();
         let w = &mut self.work;
         let usable = (0..nw).all(|k| {
-            !self.laws[k].is_rigid()
+            !is_rigid(&self.contacts[k])
                 && w.outputs[k].force > 0.0
                 && w.outputs[k].stiffness > 0.0
                 && w.column_force[k].iter().sum::<f64>() > 0.0
@@ -106,7 +107,7 @@ impl Simulation {
         for (i, ei) in e.iter_mut().enumerate() {
             *ei = ei.abs() + w.r[i].abs();
         }
-        for k in 0..self.laws.len() {
+        for k in 0..self.contacts.len() {
             for j in 0..m {
                 e[j] += s * w.modal_load[k][j].abs();
             }
@@ -114,7 +115,7 @@ impl Simulation {
         }
         self.a_matrix.solve_abs_in_place(e);
         let mut floor = 0.0f64;
-        for k in 0..self.laws.len() {
+        for k in 0..self.contacts.len() {
             let iw = self.wheel_dof[k];
             let shapes = &w.shape_at_wheel[k];
             let approach_scale = w.x[iw].abs()
@@ -123,7 +124,7 @@ impl Simulation {
             let propagated: f64 = w.v[k].iter().zip(e.iter()).map(|(v, y)| v.abs() * y).sum();
             w.floor_ainv_g.copy_from_slice(&w.g_hat[k]);
             self.a_matrix.solve_in_place(&mut w.floor_ainv_g);
-            let compliance = if self.laws[k].is_rigid() || w.outputs[k].stiffness <= 0.0 {
+            let compliance = if is_rigid(&self.contacts[k]) || w.outputs[k].stiffness <= 0.0 {
                 0.0
             } else {
                 1.0 / w.outputs[k].stiffness
@@ -171,7 +172,7 @@ impl Simulation {
         if self.scenario.coupling.solver == CouplingSolver::QuasiNewton {
             self.extrapolated_start(s);
         }
-        let nw = self.laws.len();
+        let nw = self.contacts.len();
         let tol = self.scenario.coupling.tol * self.force_scale;
         let solver = self.scenario.coupling.solver;
         let mut change = f64::INFINITY;
@@ -204,7 +205,7 @@ impl Simulation {
             if it > 1 {
                 let mut c = 0.0f64;
                 for k in 0..nw {
-                    let d = if self.laws[k].is_rigid() {
+                    let d = if is_rigid(&self.contacts[k]) {
                         w.last_df[k].abs()
                     } else {
                         (w.outputs[k].force - w.prev_force[k]).abs()
@@ -264,7 +265,7 @@ impl Simulation {
                 CouplingSolver::QuasiNewton | CouplingSolver::Newton => {
                     w.active.clear();
                     for k in 0..nw {
-                        let rigid = self.laws[k].is_rigid();
+                        let rigid = is_rigid(&self.contacts[k]);
                         let active = if rigid {
                             self.forces[k] > 0.0 || w.delta[k] > 0.0
                         } else {
@@ -316,7 +317,7 @@ impl Simulation {
                     };
                     clamped = false;
                     for (a, &k) in w.active.iter().enumerate() {
-                        if self.laws[k].is_rigid() {
+                        if is_rigid(&self.contacts[k]) {
                             clamped |= self.forces[k] + w.df[a] < 0.0;
                             let f_new = (self.forces[k] + w.df[a]).max(0.0);
                             w.last_df[k] = f_new - self.forces[k];
@@ -358,7 +359,7 @@ impl Simulation {
                 if predicted <= tol.max(w.force_floor) && all_positive {
                     for (a, &k) in w.active.iter().enumerate() {
                         let f_old = w.outputs[k].force;
-                        let f_new = if self.laws[k].is_rigid() {
+                        let f_new = if is_rigid(&self.contacts[k]) {
                             self.forces[k]
                         } else {
                             f_old + w.df[a]
@@ -435,7 +436,7 @@ impl Simulation {
             sample.body_displacement = self.body_dof[k].map_or(q[iw], |ib| q[ib]);
             sample.body_acceleration = self.body_dof[k].map_or(0.0, |ib| a[ib]);
             sample.approach = self.work.delta[k];
-            sample.contact = ContactOutput {
+            sample.contact = LawOutput {
                 iterations: contact_iterations,
                 ..contact
             };

@@ -30,7 +30,8 @@
 use faer::MatMut;
 use integrate::ode::{OdeOptions, OdeStepper, OdeSystem, Radau5};
 
-use super::{ContactOutput, Simulation, VehicleBridgeError, invalid};
+use super::contact::is_rigid;
+use super::{LawOutput, Simulation, VehicleBridgeError, invalid};
 
 /// Tolerances of the Radau5 path (local error test `|e_i| ≤ atol + rtol |y_i|`, on
 /// displacements \[m\] and modal coordinates [m √kg] and their rates).
@@ -135,7 +136,7 @@ impl OdeSystem for Coupled<'_> {
                 jac[(n + i, n + j)] = -st.damping[(i, j)] * inv_m;
             }
         }
-        for k in 0..sim.laws.len() {
+        for k in 0..sim.contacts.len() {
             let kc = sim.work.outputs[k].stiffness;
             if kc == 0.0 {
                 continue;
@@ -161,7 +162,7 @@ impl Simulation {
     /// (`contact.model`), non-positive or non-finite tolerances (`integrator.rtol`,
     /// `integrator.atol`).
     pub fn set_radau5(&mut self, spec: Radau5Spec) -> Result<(), VehicleBridgeError> {
-        if self.laws.iter().any(|l| l.is_rigid()) {
+        if self.contacts.iter().any(is_rigid) {
             return Err(invalid(
                 "contact.model",
                 f64::NAN,
@@ -263,7 +264,7 @@ impl Simulation {
             return Err(error.unwrap_or_else(|| invalid("contact", f64::NAN, "contact failed")));
         }
         let m = self.scenario.bridge.n_modes();
-        let nw = self.laws.len();
+        let nw = self.contacts.len();
         self.contact_load.fill(0.0);
         for k in 0..nw {
             for j in 0..m {
@@ -303,7 +304,7 @@ impl Simulation {
             sample.body_displacement = self.body_dof[k].map_or(q[iw], |ib| q[ib]);
             sample.body_acceleration = self.body_dof[k].map_or(0.0, |ib| a[ib]);
             sample.approach = self.work.delta[k];
-            sample.contact = ContactOutput {
+            sample.contact = LawOutput {
                 iterations: contact_iterations,
                 ..contact
             };

@@ -22,7 +22,7 @@ impl Simulation {
             self.advance(dt, 0)?;
         }
         if let Some(tr) = self.traction.as_mut() {
-            tr.update(dt, self.scenario.speed, &self.samples, &self.laws)?;
+            tr.update(dt, self.scenario.speed, &self.samples, &self.contacts)?;
         }
         Ok(())
     }
