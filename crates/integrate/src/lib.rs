@@ -19,6 +19,7 @@ pub mod stats;
 pub mod structural;
 
 pub use error::{CallbackError, IntegrateError};
+pub use lu::{DenseLu, LuScalar};
 pub use ode::{Method, OdeOptions, OdeStepper, OdeSystem};
 pub use root::{Root, illinois};
 pub use stats::Stats;

@@ -65,6 +65,7 @@
 //! under it (ż_w = ż_b = −c r'(x_k0)); the bridge starts at rest and undeflected (wheels
 //! normally start off the span, x_k0 ≤ 0).
 
+mod accept;
 mod assembly;
 mod contact;
 mod contact_eval;
@@ -86,16 +87,15 @@ use integrate::structural::{StepEquation, StructuralStepper};
 use assembly::Structure;
 pub use contact::ContactGeometry;
 pub use error::VehicleBridgeError;
-use error::invalid;
 pub use irregularity::{Irregularity, RandomProfile, TrackSpectrum};
-use linalg::{BlockDiagonal, CapacitanceWork};
+use linalg::{BlockDiagonal, CapacitanceWork, DenseWork};
 pub use outputs::{SolverStats, WheelSample};
 pub use radau::Radau5Spec;
 pub use run::{
     Accuracy, Extremum, NoObserver, Range, RunFailure, RunObserver, RunSummary, StepInfo,
     WheelSummary,
 };
-pub use scenario::{ContactModel, CouplingSolver, CouplingSpec, Scenario, WheelSpec};
+pub use scenario::{ContactModel, CouplingSolver, CouplingSpec, Integrator, Scenario, WheelSpec};
 
 /// Standard gravity \[m/s²\].
 pub const GRAVITY: f64 = 9.81;
@@ -171,7 +171,7 @@ struct Work {
     delta_tilde: Vec<f64>,
     df: Vec<f64>,
     cap: CapacitanceWork,
-    dense: Vec<f64>,
+    dense: DenseWork,
     /// Round-off bound of the step residual and its image under |A⁻¹| (n), and the contact
     /// forces' floating-point floor per wheel (see `Simulation::force_floor`).
     floor_residual: Vec<f64>,

@@ -6,8 +6,8 @@
 use beam::{AnalyticBeam, Derivative, ModalBasis, ModalDamping, Support, UniformBeam};
 use integrate::structural::StructuralMethod;
 use sim::vehicle_bridge::{
-    ContactGeometry, ContactModel, CouplingSpec, GRAVITY, Irregularity, Scenario, Simulation,
-    WheelSpec,
+    ContactGeometry, ContactModel, CouplingSpec, GRAVITY, Integrator, Irregularity, Scenario,
+    Simulation, WheelSpec,
 };
 
 /// The Biggs / Yang–Yau bridge (references.md §D1.3): EI = 8.323e9 N m², ρA = 2303 kg/m.
@@ -44,7 +44,7 @@ fn scenario(
             poisson_ratio: 0.3,
         },
         irregularity: Irregularity::None,
-        method,
+        integrator: Integrator::Structural(method),
         dt,
         duration: None,
         coupling: CouplingSpec::default(),

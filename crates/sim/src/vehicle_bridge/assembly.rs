@@ -3,13 +3,15 @@
 
 use beam::Derivative;
 use faer::{Mat, MatRef};
-use integrate::structural::{StepEquation, StructuralStepper, StructuralSystem};
+use integrate::structural::{StepEquation, StructuralMethod, StructuralStepper, StructuralSystem};
 
 use halfspace::law::{ContactModel as LawModel, LawOutput};
 
 use super::contact::{columns, wheel_contact, wheel_error};
-use super::linalg::{BlockDiagonal, CapacitanceWork};
-use super::{Scenario, Simulation, SolverStats, VehicleBridgeError, WheelSample, Work, scenario};
+use super::linalg::{BlockDiagonal, CapacitanceWork, DenseWork};
+use super::{
+    Integrator, Scenario, Simulation, SolverStats, VehicleBridgeError, WheelSample, Work, scenario,
+};
 
 /// The contact-free linear structure (bridge modes and vehicle), for the stepper.
 pub(super) struct Structure {
@@ -163,7 +165,13 @@ impl Simulation {
         // A massless wheel's row and column of M are zero: the stepper treats it as a massless
         // DOF (no inertia in its step row, start acceleration 0; the static start balances the
         // wheel row exactly, so (f_ext − C v − K q)_w = 0 there as well).
-        let stepper = StructuralStepper::new(scenario.method, &mut structure, 0.0, &q0, &v0)?;
+        // With Radau5 the structural stepper only holds the reported state (restarted after
+        // every output step; module `radau`), so any implicit method serves.
+        let method = match scenario.integrator {
+            Integrator::Structural(method) => method,
+            Integrator::Radau5(_) => StructuralMethod::average_acceleration(),
+        };
+        let stepper = StructuralStepper::new(method, &mut structure, 0.0, &q0, &v0)?;
         let nw = scenario.wheels.len();
         let ncols: Vec<usize> = contacts.iter().map(|c| columns(c).len()).collect();
         let work = Work {
@@ -191,7 +199,7 @@ impl Simulation {
             delta_tilde: vec![0.0; nw],
             df: vec![0.0; nw],
             cap: CapacitanceWork::new(n, nw),
-            dense: Vec::new(),
+            dense: DenseWork::default(),
             floor_residual: vec![0.0; n],
             floor_ainv_g: vec![0.0; n],
             force_floor: 0.0,
@@ -230,6 +238,9 @@ impl Simulation {
         };
         sim.initial_samples()?;
         sim.rigid_start()?;
+        if let Integrator::Radau5(spec) = sim.scenario.integrator {
+            sim.start_radau5(spec)?;
+        }
         Ok(sim)
     }
 

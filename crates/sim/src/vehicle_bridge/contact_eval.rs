@@ -70,14 +70,7 @@ impl Simulation {
             w.outputs[k] = out;
             let load = &mut w.modal_load[k];
             load.fill(0.0);
-            for (i, &fc) in w.column_force[k].iter().enumerate() {
-                if fc != 0.0 {
-                    let cs = &w.shape_at_columns[k][i * m..(i + 1) * m];
-                    for j in 0..m {
-                        load[j] += fc * cs[j];
-                    }
-                }
-            }
+            add_modal_load(&w.shape_at_columns[k], &w.column_force[k], 1.0, load);
             let (gh, v) = (&mut w.g_hat[k], &mut w.v[k]);
             gh.fill(0.0);
             v.fill(0.0);
@@ -93,5 +86,27 @@ impl Simulation {
             gh[iw] = 1.0;
         }
         Ok(())
+    }
+}
+
+/// Adds the modal loads of one wheel, `I_j += Σ_i (scale F_i) w_j(x_k + ξ_i)` (module
+/// documentation of the vehicle–bridge model), to `load` (m values): `column_force` holds the
+/// column forces F_i \[N\] and `column_shapes` the m mode shapes at each column (column-major
+/// by column, ncol × m).
+pub(super) fn add_modal_load(
+    column_shapes: &[f64],
+    column_force: &[f64],
+    scale: f64,
+    load: &mut [f64],
+) {
+    let m = load.len();
+    for (i, &fc) in column_force.iter().enumerate() {
+        if fc != 0.0 {
+            let f = scale * fc;
+            let cs = &column_shapes[i * m..(i + 1) * m];
+            for j in 0..m {
+                load[j] += f * cs[j];
+            }
+        }
     }
 }

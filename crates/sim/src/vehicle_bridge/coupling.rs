@@ -2,10 +2,12 @@
 //! Picard, quasi-Newton (Sherman–Morrison / Woodbury) and Newton iterations, the
 //! extrapolated quasi-Newton start, and the floating-point floor of the contact forces.
 
+use super::accept::{Accepted, StateUpdate};
 use super::contact::is_rigid;
+use super::contact_eval::add_modal_load;
 use super::linalg::{self, contact_update, dense_contact_update};
 use super::step::StepFailure;
-use super::{CouplingSolver, LawOutput, Simulation, VehicleBridgeError};
+use super::{CouplingSolver, Simulation, VehicleBridgeError};
 
 impl Simulation {
     /// Quasi-Newton start without a contact evaluation: every contact law is replaced by its
@@ -47,18 +49,17 @@ impl Simulation {
             let (gh, v) = (&mut w.g_act[k], &mut w.v_act[k]);
             gh.fill(0.0);
             v.fill(0.0);
-            for (i, &fc) in w.column_force[k].iter().enumerate() {
-                if fc != 0.0 {
-                    let cs = &w.shape_at_columns[k][i * m..(i + 1) * m];
-                    for j in 0..m {
-                        gh[j] -= scale * fc * cs[j];
-                    }
-                }
-            }
+            // I_k at the new position, held in `gh` first.
+            add_modal_load(
+                &w.shape_at_columns[k],
+                &w.column_force[k],
+                scale,
+                &mut gh[..m],
+            );
             // −R gets +s I_k on the modes and −s F_k on the wheel; ĝ = (−I/F, +1).
             for j in 0..m {
-                w.res[j] -= s * gh[j];
-                gh[j] /= force;
+                w.res[j] += s * gh[j];
+                gh[j] = -gh[j] / force;
                 v[j] = -shapes[j];
             }
             w.res[iw] -= s * force;
@@ -67,7 +68,7 @@ impl Simulation {
             w.compliance[k] = 1.0 / k_n;
             w.delta_tilde[k] = 0.0;
         }
-        let ok = contact_update(
+        let solved = contact_update(
             &self.a_matrix,
             s,
             &w.g_act[..nw],
@@ -78,7 +79,8 @@ impl Simulation {
             &mut w.df,
             &mut w.cap,
         );
-        if ok && w.res.iter().all(|d| d.is_finite()) {
+        // A singular update leaves the predictor as it is (the iteration then starts there).
+        if solved.is_ok() && w.res.iter().all(|d| d.is_finite()) {
             for (x, d) in w.x.iter_mut().zip(&w.res) {
                 *x += d;
             }
@@ -259,10 +261,10 @@ impl Simulation {
                 self.force_floor(s);
             }
             let w = &mut self.work;
-            let ok = match solver {
+            let solved = match solver {
                 CouplingSolver::Picard => {
                     self.a_matrix.solve_in_place(&mut w.res);
-                    true
+                    Ok(())
                 }
                 CouplingSolver::QuasiNewton | CouplingSolver::Newton => {
                     w.active.clear();
@@ -292,7 +294,7 @@ impl Simulation {
                         w.v_act[a].copy_from_slice(&w.v[k]);
                     }
                     let (g_hat, v) = (&w.g_act[..ka], &w.v_act[..ka]);
-                    let ok = if solver == CouplingSolver::QuasiNewton {
+                    let solved = if solver == CouplingSolver::QuasiNewton {
                         contact_update(
                             &self.a_matrix,
                             s,
@@ -334,14 +336,14 @@ impl Simulation {
                             self.forces[k] = f_new;
                         }
                     }
-                    ok
+                    solved
                 }
             };
-            if !ok {
+            if let Err(singular) = solved {
                 return Err(StepFailure {
                     iterations,
                     change,
-                    reason: "singular coupled step matrix".to_string(),
+                    reason: format!("{singular} in the coupled step"),
                     fatal: None,
                 });
             }
@@ -406,62 +408,15 @@ impl Simulation {
                 fatal: None,
             });
         }
-        // Accept: the generalized contact force at t_{n+1}.
-        let m = self.scenario.bridge.n_modes();
-        let w = &self.work;
-        self.contact_load.fill(0.0);
-        for k in 0..nw {
-            for j in 0..m {
-                self.contact_load[j] += w.modal_load[k][j];
-            }
-            self.contact_load[self.wheel_dof[k]] = -w.outputs[k].force;
-        }
-        self.structure
-            .contact_load
-            .copy_from_slice(&self.contact_load);
-        let x = std::mem::take(&mut self.work.x);
-        let finished = self.stepper.finish_step(&mut self.structure, dt, &x);
-        self.work.x = x;
-        finished.map_err(|e| fatal(e.into()))?;
-        self.rigid_finish(dt).map_err(fatal)?;
-        self.stats.steps += 1;
-        self.stats.iterations += iterations;
-        self.stats.max_iterations = self.stats.max_iterations.max(iterations);
-        self.stats.contact_iterations += contact_iterations;
-        self.stats.max_force_floor = self.stats.max_force_floor.max(self.work.force_floor);
-        let q = self.stepper.q();
-        let a = self.stepper.a();
-        for k in 0..nw {
-            let iw = self.wheel_dof[k];
-            let contact = self.work.outputs[k];
-            let rigid = is_rigid(&self.contacts[k]);
-            // A rigid wheel is in contact while it is held on the rail (module `rigid`).
-            let touching = if rigid {
-                self.rigid.attached[k]
-            } else {
-                contact.force > 0.0
-            };
-            if self.in_contact[k] && !touching {
-                self.loss_events += 1;
-                self.wheel_loss_events[k] += 1;
-            }
-            self.in_contact[k] = touching;
-            self.forces[k] = if rigid && !touching {
-                0.0
-            } else {
-                contact.force
-            };
-            let sample = &mut self.samples[k];
-            sample.wheel_displacement = q[iw];
-            sample.wheel_acceleration = a[iw];
-            sample.body_displacement = self.body_dof[k].map_or(q[iw], |ib| q[ib]);
-            sample.body_acceleration = self.body_dof[k].map_or(0.0, |ib| a[ib]);
-            sample.approach = self.work.delta[k];
-            sample.contact = LawOutput {
-                iterations: contact_iterations,
-                ..contact
-            };
-        }
-        Ok(())
+        self.accept(
+            StateUpdate::Finish { dt },
+            Accepted {
+                steps: 1,
+                iterations,
+                contact_iterations,
+                rejected: 0,
+            },
+        )
+        .map_err(fatal)
     }
 }
