@@ -72,6 +72,7 @@ mod error;
 pub mod irregularity;
 pub mod linalg;
 mod outputs;
+mod picard;
 pub mod radau;
 pub mod run;
 mod scenario;
