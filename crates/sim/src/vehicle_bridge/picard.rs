@@ -28,7 +28,7 @@ impl Simulation {
         let mut largest: Option<(f64, usize)> = None;
         for k in 0..self.laws.len() {
             let k_c = self.static_contact_stiffness[k];
-            if self.laws[k].is_rigid() || !(k_c > 0.0) {
+            if self.laws[k].is_rigid() || k_c.is_nan() || k_c <= 0.0 {
                 continue;
             }
             // v_k: −w_j(x_k) on the modes, +1 on the wheel (evaluate_contacts).
