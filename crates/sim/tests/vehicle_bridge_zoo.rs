@@ -470,7 +470,7 @@ fn run_zoo(name: &str, cases: &[Case]) {
     let mut failures = Vec::new();
     let mut worst = (0.0f64, 0.0f64);
     let mut steps = 0usize;
-    let mut failed_steps = 0usize;
+    let mut halved = std::collections::BTreeMap::<&str, usize>::new();
     let mut warned = std::collections::BTreeMap::<String, usize>::new();
     let mut loss = 0usize;
     for case in cases {
@@ -482,7 +482,8 @@ fn run_zoo(name: &str, cases: &[Case]) {
         match result {
             Ok((agreement, default)) => {
                 steps += default.summary.solver.steps;
-                failed_steps += default.summary.solver.failed_steps;
+                let solver = case.combination.solver.unwrap_or("radau5");
+                *halved.entry(solver).or_default() += default.summary.solver.failed_steps;
                 for w in &default.summary.accuracy.warnings {
                     let class = w.split_whitespace().take(5).collect::<Vec<_>>().join(" ");
                     *warned.entry(class).or_default() += 1;
@@ -497,7 +498,7 @@ fn run_zoo(name: &str, cases: &[Case]) {
         }
     }
     println!(
-        "{name}: {} cases in {:.1} s, {} failed; {steps} steps, {failed_steps} halved steps, {loss} cases with loss of contact; largest differences to the tight run: force {:.3e} (unflagged runs), deflection {:.3e}; accuracy warnings {warned:?}",
+        "{name}: {} cases in {:.1} s, {} failed; {steps} steps, halved steps by solver {halved:?}, {loss} cases with loss of contact; largest differences to the tight run: force {:.3e} (unflagged runs), deflection {:.3e}; accuracy warnings {warned:?}",
         cases.len(),
         start.elapsed().as_secs_f64(),
         failures.len(),
