@@ -7,6 +7,7 @@ use std::path::Path;
 use std::process::Output;
 
 use halfspace::{Hertz, Material, creep_coefficients};
+use sim::config::vehicle_bridge::DEFAULT_GEOMETRY as G;
 
 use support::dyncontact;
 
@@ -79,9 +80,15 @@ fn linear_braking_reports_kalker_force() {
     );
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     let w = 600.0 * 9.81 + 50e3;
-    let mat = Material::identical(210e9, 0.3).unwrap();
-    let h = Hertz::elliptic(0.5 / 0.46, 0.5 / 0.3, mat.e_star, w).unwrap();
-    let c11 = creep_coefficients(h.a, h.b, 0.3).unwrap().c11;
+    let mat = Material::identical(G.youngs_modulus, G.poisson_ratio).unwrap();
+    let h = Hertz::elliptic(
+        0.5 / G.wheel_radius,
+        0.5 / G.rail_profile_radius,
+        mat.e_star,
+        w,
+    )
+    .unwrap();
+    let c11 = creep_coefficients(h.a, h.b, G.poisson_ratio).unwrap().c11;
     let reference = -mat.g * h.a * h.b * c11 * 1e-4;
     let t = &v["traction"];
     let mean = t["mean_longitudinal_force"].as_f64().unwrap();
@@ -164,7 +171,7 @@ fn two_wheels_get_their_own_traction_columns() {
         .split(',')
         .map(|s| s.parse().unwrap())
         .collect();
-    let mat = Material::identical(210e9, 0.3).unwrap();
+    let mat = Material::identical(G.youngs_modulus, G.poisson_ratio).unwrap();
     for (k, p) in [(0, 50e3), (1, 40e3)] {
         let col = |name: &str| {
             header
@@ -176,8 +183,14 @@ fn two_wheels_get_their_own_traction_columns() {
         assert_eq!(col("adhesion_fraction"), col("max_pressure") + 3);
         let w = 600.0 * 9.81 + p;
         assert!((last[col("contact_force")] / w - 1.0).abs() < 1e-9);
-        let h = Hertz::elliptic(0.5 / 0.46, 0.5 / 0.3, mat.e_star, w).unwrap();
-        let c11 = creep_coefficients(h.a, h.b, 0.3).unwrap().c11;
+        let h = Hertz::elliptic(
+            0.5 / G.wheel_radius,
+            0.5 / G.rail_profile_radius,
+            mat.e_star,
+            w,
+        )
+        .unwrap();
+        let c11 = creep_coefficients(h.a, h.b, G.poisson_ratio).unwrap().c11;
         let reference = -mat.g * h.a * h.b * c11 * 1e-4;
         assert!((last[col("longitudinal_force")] / reference - 1.0).abs() < 1e-9);
         assert_eq!(last[col("creepage")], 1e-4);

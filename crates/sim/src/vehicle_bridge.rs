@@ -74,6 +74,7 @@ mod error;
 pub mod irregularity;
 pub mod linalg;
 mod outputs;
+mod picard;
 pub mod radau;
 mod rigid;
 pub mod run;

@@ -5,6 +5,7 @@ use beam::{
     AnalyticBeam, ModalBasis, ModalDamping, MovingLoadSettings, MovingLoads, Support, UniformBeam,
 };
 use integrate::structural::StructuralMethod;
+use sim::config::vehicle_bridge::DEFAULT_GEOMETRY;
 use sim::vehicle_bridge::{
     ContactGeometry, ContactModel, CouplingSolver, CouplingSpec, GRAVITY, Integrator, Irregularity,
     Scenario, Simulation, WheelSpec,
@@ -20,12 +21,7 @@ fn bridge(support: Support, modes: usize) -> Box<dyn ModalBasis> {
 }
 
 fn geometry() -> ContactGeometry {
-    ContactGeometry {
-        wheel_radius: 0.46,
-        rail_profile_radius: 0.3,
-        youngs_modulus: 210e9,
-        poisson_ratio: 0.3,
-    }
+    DEFAULT_GEOMETRY
 }
 
 fn scenario(

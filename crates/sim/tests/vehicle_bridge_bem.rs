@@ -2,9 +2,9 @@
 
 use beam::{AnalyticBeam, ModalBasis, ModalDamping, Support, UniformBeam};
 use integrate::structural::StructuralMethod;
+use sim::config::vehicle_bridge::DEFAULT_GEOMETRY;
 use sim::vehicle_bridge::{
-    ContactGeometry, ContactModel, CouplingSpec, GRAVITY, Integrator, Irregularity, Scenario,
-    Simulation, WheelSpec,
+    ContactModel, CouplingSpec, GRAVITY, Integrator, Irregularity, Scenario, Simulation, WheelSpec,
 };
 
 fn run(contact: ContactModel) -> (Vec<f64>, Vec<f64>, Simulation) {
@@ -29,12 +29,7 @@ fn run(contact: ContactModel) -> (Vec<f64>, Vec<f64>, Simulation) {
         }],
         speed: 27.78,
         contact,
-        geometry: ContactGeometry {
-            wheel_radius: 0.46,
-            rail_profile_radius: 0.3,
-            youngs_modulus: 210e9,
-            poisson_ratio: 0.3,
-        },
+        geometry: DEFAULT_GEOMETRY,
         irregularity: Irregularity::Dip {
             position: 3.0,
             length: 0.6,

@@ -4,9 +4,10 @@
 
 use beam::{AnalyticBeam, Derivative, ModalBasis, ModalDamping, Support, UniformBeam};
 use integrate::structural::StructuralMethod;
+use sim::config::vehicle_bridge::{DEFAULT_BEM_TOL, DEFAULT_GEOMETRY};
 use sim::vehicle_bridge::{
-    ContactGeometry, ContactModel, CouplingSpec, GRAVITY, Integrator, Irregularity, Scenario,
-    Simulation, VehicleBridgeError, WheelSpec,
+    ContactModel, CouplingSpec, GRAVITY, Integrator, Irregularity, Scenario, Simulation,
+    VehicleBridgeError, WheelSpec,
 };
 
 /// Biggs's bridge (references.md §D1.3): L = 25 m, EI = 2.87e9 × 2.90, ρA = 2303 kg/m.
@@ -34,12 +35,7 @@ fn scenario(modes: usize, wheel: WheelSpec, speed: f64, contact: ContactModel) -
         wheels: vec![wheel],
         speed,
         contact,
-        geometry: ContactGeometry {
-            wheel_radius: 0.46,
-            rail_profile_radius: 0.3,
-            youngs_modulus: 210e9,
-            poisson_ratio: 0.3,
-        },
+        geometry: DEFAULT_GEOMETRY,
         irregularity: Irregularity::None,
         integrator: Integrator::Structural(StructuralMethod::generalized_alpha(0.9).unwrap()),
         dt: 1e-4,
@@ -214,7 +210,7 @@ fn massless_wheel_input_errors_name_the_key() {
         massless(0.0),
         ContactModel::Bem {
             elements: 8,
-            tol: 1e-8,
+            tol: DEFAULT_BEM_TOL,
         },
         "rigid",
     );

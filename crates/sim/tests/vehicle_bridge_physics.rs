@@ -3,6 +3,7 @@
 
 use beam::{AnalyticBeam, Derivative, ModalBasis, ModalDamping, Support, UniformBeam};
 use integrate::structural::StructuralMethod;
+use sim::config::vehicle_bridge::DEFAULT_GEOMETRY;
 use sim::vehicle_bridge::{
     ContactGeometry, ContactModel, CouplingSpec, GRAVITY, Integrator, Irregularity, Scenario,
     Simulation, TrackSpectrum, WheelSpec,
@@ -22,12 +23,7 @@ fn basis(modes: usize) -> AnalyticBeam {
 }
 
 fn geometry() -> ContactGeometry {
-    ContactGeometry {
-        wheel_radius: 0.46,
-        rail_profile_radius: 0.3,
-        youngs_modulus: 210e9,
-        poisson_ratio: 0.3,
-    }
+    DEFAULT_GEOMETRY
 }
 
 fn scenario(wheels: Vec<WheelSpec>, contact: ContactModel, dt: f64, modes: usize) -> Scenario {

@@ -3,9 +3,10 @@
 
 use beam::{AnalyticBeam, ModalDamping, Support, UniformBeam};
 use integrate::structural::StructuralMethod;
+use sim::config::vehicle_bridge::DEFAULT_GEOMETRY;
 use sim::vehicle_bridge::{
-    ContactGeometry, ContactModel, CouplingSpec, GRAVITY, Integrator, Irregularity, Radau5Spec,
-    Scenario, Simulation, VehicleBridgeError, WheelSpec,
+    ContactModel, CouplingSpec, GRAVITY, Integrator, Irregularity, Radau5Spec, Scenario,
+    Simulation, VehicleBridgeError, WheelSpec,
 };
 
 const L: f64 = 25.0;
@@ -31,12 +32,7 @@ fn scenario(dt: f64, contact: ContactModel, depth: f64) -> Scenario {
         }],
         speed: 27.78,
         contact,
-        geometry: ContactGeometry {
-            wheel_radius: 0.46,
-            rail_profile_radius: 0.3,
-            youngs_modulus: 210e9,
-            poisson_ratio: 0.3,
-        },
+        geometry: DEFAULT_GEOMETRY,
         irregularity: Irregularity::Dip {
             position: 8.0,
             length: 1.0,

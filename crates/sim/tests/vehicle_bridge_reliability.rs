@@ -3,9 +3,9 @@
 
 use beam::{AnalyticBeam, Derivative, ModalBasis, ModalDamping, Support, UniformBeam};
 use integrate::structural::StructuralMethod;
+use sim::config::vehicle_bridge::{DEFAULT_DT, DEFAULT_GEOMETRY};
 use sim::vehicle_bridge::{
-    ContactGeometry, ContactModel, CouplingSpec, GRAVITY, Integrator, Irregularity, Scenario,
-    Simulation, WheelSpec,
+    ContactModel, CouplingSpec, GRAVITY, Integrator, Irregularity, Scenario, Simulation, WheelSpec,
 };
 
 const L: f64 = 25.0;
@@ -28,12 +28,7 @@ fn scenario(wheels: Vec<WheelSpec>, speed: f64, dt: f64, modes: usize) -> Scenar
         wheels,
         speed,
         contact: ContactModel::Rigid,
-        geometry: ContactGeometry {
-            wheel_radius: 0.46,
-            rail_profile_radius: 0.3,
-            youngs_modulus: 210e9,
-            poisson_ratio: 0.3,
-        },
+        geometry: DEFAULT_GEOMETRY,
         irregularity: Irregularity::None,
         integrator: Integrator::Structural(StructuralMethod::average_acceleration()),
         dt,
@@ -234,7 +229,7 @@ fn heavy_moving_mass_runs_with_the_defaults_and_matches_the_glued_mass() {
 #[test]
 fn defaults_work_from_one_kilogram_to_a_locomotive() {
     for mass in [1.0, 100.0, 5_757.5, 30_000.0] {
-        for dt in [1e-4, 2e-5] {
+        for dt in [DEFAULT_DT, 2e-5] {
             let wheel = WheelSpec {
                 position: 0.0,
                 wheel_mass: mass,
@@ -259,7 +254,7 @@ fn defaults_work_from_one_kilogram_to_a_locomotive() {
         static_load: 1e4,
         ..WheelSpec::default()
     };
-    let mut sc = scenario(vec![wheel], 30.0, 1e-4, 12);
+    let mut sc = scenario(vec![wheel], 30.0, DEFAULT_DT, 12);
     sc.contact = ContactModel::Hertz;
     sc.coupling.max_iter = 1;
     sc.coupling.max_halvings = 0;
@@ -291,7 +286,7 @@ fn step_size_is_checked_against_the_shortest_time_scale() {
     };
     assert!(e.contains("integrator.dt") && e.contains("steps"), "{e}");
 
-    for (dt, flagged) in [(1e-3, true), (1e-4, false)] {
+    for (dt, flagged) in [(1e-3, true), (DEFAULT_DT, false)] {
         let mut sc = scenario(vec![wheel], 30.0, dt, 12);
         sc.contact = ContactModel::Hertz;
         sc.integrator = Integrator::Structural(StructuralMethod::generalized_alpha(0.8).unwrap());

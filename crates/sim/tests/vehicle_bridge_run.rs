@@ -2,13 +2,14 @@
 //! by an observer (the computation the CLI did before the driver existed), the quasi-static
 //! deflection against the closed form F L³/(48 EI), and stopping by the observer.
 
+use sim::config::vehicle_bridge::DEFAULT_GEOMETRY;
 use std::ops::ControlFlow;
 
 use beam::{AnalyticBeam, ModalDamping, Support, UniformBeam};
 use integrate::structural::StructuralMethod;
 use sim::vehicle_bridge::{
-    ContactGeometry, ContactModel, CouplingSpec, GRAVITY, Integrator, Irregularity, Scenario,
-    Simulation, StepInfo, WheelSpec, run,
+    ContactModel, CouplingSpec, GRAVITY, Integrator, Irregularity, Scenario, Simulation, StepInfo,
+    WheelSpec, run,
 };
 
 const L: f64 = 25.0;
@@ -39,12 +40,7 @@ fn scenario() -> Scenario {
         wheels: vec![car(0.0), car(-5.0)],
         speed: 30.0,
         contact: ContactModel::Hertz,
-        geometry: ContactGeometry {
-            wheel_radius: 0.46,
-            rail_profile_radius: 0.3,
-            youngs_modulus: 210e9,
-            poisson_ratio: 0.3,
-        },
+        geometry: DEFAULT_GEOMETRY,
         irregularity: Irregularity::Dip {
             position: 10.0,
             length: 1.0,

@@ -9,21 +9,17 @@
 use beam::{AnalyticBeam, ModalBasis, ModalDamping, Support, UniformBeam};
 use halfspace::{Hertz, Material, creep_coefficients};
 use integrate::structural::StructuralMethod;
+use sim::config::vehicle_bridge::{DEFAULT_BEM_GRID, DEFAULT_FASTSIM_ELEMENTS, DEFAULT_GEOMETRY};
 use sim::vehicle_bridge::traction::{TractionDrive, TractionMethod, TractionSpec};
 use sim::vehicle_bridge::{
     ContactGeometry, ContactModel, CouplingSpec, GRAVITY, Integrator, Irregularity, Scenario,
     Simulation, VehicleBridgeError, WheelSpec,
 };
 
-const GEOMETRY: ContactGeometry = ContactGeometry {
-    wheel_radius: 0.46,
-    rail_profile_radius: 0.3,
-    youngs_modulus: 210e9,
-    poisson_ratio: 0.3,
-};
+const GEOMETRY: ContactGeometry = DEFAULT_GEOMETRY;
 const M_W: f64 = 600.0;
 const P: f64 = 50e3;
-const BEM_N: usize = 32;
+const BEM_N: usize = DEFAULT_BEM_GRID;
 const MU: f64 = 0.3;
 
 fn weight() -> f64 {
@@ -99,7 +95,7 @@ fn run(method: TractionMethod, drive: TractionDrive, steps: usize) -> (Vec<[f64;
         mu: MU,
         method,
         drive,
-        fastsim_elements: 40,
+        fastsim_elements: DEFAULT_FASTSIM_ELEMENTS,
     })
     .unwrap();
     let mut out = Vec::new();

@@ -156,6 +156,11 @@ pub const MAX_DT_CONTACT: f64 = 0.1;
 /// retaining it only costs time.
 pub const MAX_DT_MODE: f64 = 1.0;
 
+/// Largest Δt·f_c of a contact mode with backward Euler: the first-order method damps an
+/// oscillation of frequency f by the factor (1 + (2π f Δt)²)^{-1/2} per step, so by about
+/// π² Δt f over half a period (the duration of an impact); 5 % there needs Δt·f_c ≤ 0.005.
+pub const MAX_DT_CONTACT_FIRST_ORDER: f64 = 0.005;
+
 /// Accuracy indicators of a run (see [`Simulation::step_indicators`]). No energy-balance
 /// residual is reported: the coupled model has no closed energy balance in general (the
 /// horizontal force that keeps the speed constant does work on the sloped rail).
@@ -165,7 +170,10 @@ pub struct Accuracy {
     pub dt_times_highest_mode_frequency: f64,
     /// Largest Δt · f_c of a wheel's contact mode (`None` for the rigid contact).
     pub dt_times_contact_frequency: Option<f64>,
-    /// Indicators above [`MAX_DT_CONTACT`] / [`MAX_DT_MODE`], each with the key and remedy.
+    /// Indicators above [`MAX_DT_CONTACT`] / [`MAX_DT_MODE`] (at the start, and for the
+    /// contact at the peak contact force of the run), backward Euler above
+    /// [`MAX_DT_CONTACT_FIRST_ORDER`], and rigid landings after a loss of contact, each with
+    /// the key and remedy.
     pub warnings: Vec<String>,
 }
 
@@ -180,6 +188,16 @@ impl Accuracy {
                 dt * MAX_DT_CONTACT / c
             ));
         }
+        if let Some(c) = contact.filter(|&c| c > MAX_DT_CONTACT_FIRST_ORDER && c <= MAX_DT_CONTACT)
+            && sim.scenario().integrator.name() == "backward_euler"
+            && !sim.uses_radau5()
+        {
+            warnings.push(format!(
+                "backward_euler (first order) damps the contact mode by about π²·dt·f_c = {:.1} % per half period (an impact's force peak is that much too low): integrator.dt = {dt:e} s gives dt·f_c = {c:.4} > {MAX_DT_CONTACT_FIRST_ORDER}; use dt <= {:.3e} s or a second-order method (generalized_alpha)",
+                100.0 * std::f64::consts::PI.powi(2) * c,
+                dt * MAX_DT_CONTACT_FIRST_ORDER / c
+            ));
+        }
         if mode > MAX_DT_MODE {
             warnings.push(format!(
                 "the highest retained bridge mode has dt·f_max = {mode:.3} > {MAX_DT_MODE} (less than one step per period): it is filtered by the integrator; use fewer bridge.modes or dt <= {:.3e} s",
@@ -190,6 +208,53 @@ impl Accuracy {
             dt_times_highest_mode_frequency: mode,
             dt_times_contact_frequency: contact,
             warnings,
+        }
+    }
+}
+
+impl Accuracy {
+    /// The warnings that need the whole run: the contact mode at the peak force of each wheel
+    /// (a Hertzian contact stiffens as k_c ∝ F^{1/3}, so f_c ∝ F^{1/6}: an impact of 30 W
+    /// has a contact mode 1.8× faster than at the static load W), and a rigid contact that
+    /// lost and regained contact (each landing is an impulse that one step spreads into a force
+    /// of about impulse/Δt, so the peak forces depend on Δt, and so may the bounces that
+    /// follow: the scenario zoo's long mode found midspan deflections 2–13 % apart at Δt/2).
+    fn after_run(&mut self, sim: &Simulation, wheels: &[WheelSummary], loss_events: usize) {
+        let dt = sim.scenario().dt;
+        if self
+            .dt_times_contact_frequency
+            .is_some_and(|c| c <= MAX_DT_CONTACT)
+            && !sim.uses_radau5()
+        {
+            let two_pi = 2.0 * std::f64::consts::PI;
+            let worst = (0..wheels.len())
+                .filter_map(|k| {
+                    let (m_w, k_c, load) = (
+                        sim.scenario.wheels[k].wheel_mass,
+                        sim.static_contact_stiffness[k],
+                        sim.static_loads[k],
+                    );
+                    let peak = wheels[k].force.max.value;
+                    (m_w > 0.0 && k_c > 0.0 && load > 0.0 && peak > load).then(|| {
+                        let c = dt * (k_c / m_w).sqrt() / two_pi * (peak / load).powf(1.0 / 6.0);
+                        (c, k, peak)
+                    })
+                })
+                .fold(None, |m: Option<(f64, usize, f64)>, v| match m {
+                    Some(m) if m.0 >= v.0 => Some(m),
+                    _ => Some(v),
+                });
+            if let Some((c, k, peak)) = worst.filter(|w| w.0 > MAX_DT_CONTACT) {
+                self.warnings.push(format!(
+                    "the contact mode at the peak contact force {peak:.4e} N of wheel {k} is under-resolved: the contact stiffens with the force, and integrator.dt = {dt:e} s gives dt·f_c = {c:.3} > {MAX_DT_CONTACT} there; use dt <= {:.3e} s",
+                    dt * MAX_DT_CONTACT / c
+                ));
+            }
+        }
+        if loss_events > 0 && sim.contacts.iter().any(super::contact::is_rigid) {
+            self.warnings.push(format!(
+                "rigid contact with {loss_events} loss-of-contact events: each landing is an impulse that one step of integrator.dt = {dt:e} s spreads into a force of about impulse/dt, so the peak contact forces depend on dt, and the bounces after a landing (so the response) may too; use contact.model = \"hertz\" for impacts"
+            ));
         }
     }
 }
@@ -314,8 +379,10 @@ impl Recorder {
         Ok(())
     }
 
-    fn finish(mut self, completed: bool) -> RunSummary {
+    fn finish(mut self, sim: &Simulation, completed: bool) -> RunSummary {
         let s = &mut self.summary;
+        s.accuracy
+            .after_run(sim, &s.wheels, s.loss_of_contact_events);
         s.completed = completed;
         s.dynamic_amplification = s
             .max_quasi_static_deflection
@@ -348,7 +415,7 @@ pub fn run_sampled(
     let steps = sim.planned_steps();
     let mut recorder = Recorder::new(sim, steps);
     if observer.start(sim).is_break() {
-        return Ok(recorder.finish(false));
+        return Ok(recorder.finish(sim, false));
     }
     for step in 1..=steps {
         let before = sim.stats().iterations;
@@ -357,7 +424,7 @@ pub fn run_sampled(
         if let Err(error) = stepped {
             return Err(RunFailure {
                 error,
-                partial: Box::new(recorder.finish(false)),
+                partial: Box::new(recorder.finish(sim, false)),
             });
         }
         let info = StepInfo {
@@ -366,8 +433,8 @@ pub fn run_sampled(
             iterations: sim.stats().iterations - before,
         };
         if observer.after_step(sim, info).is_break() {
-            return Ok(recorder.finish(step == steps));
+            return Ok(recorder.finish(sim, step == steps));
         }
     }
-    Ok(recorder.finish(true))
+    Ok(recorder.finish(sim, true))
 }

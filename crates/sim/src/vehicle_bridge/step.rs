@@ -1,7 +1,7 @@
 //! Step acceptance: the public step, recursive step halving of a failing attempt, and the
 //! block-diagonal step matrix A = c_M M + c_C C + c_K K.
 
-use super::{Simulation, VehicleBridgeError};
+use super::{CouplingSolver, Simulation, VehicleBridgeError};
 
 /// Why one step attempt failed.
 #[derive(Debug)]
@@ -38,6 +38,10 @@ impl Simulation {
                 }
                 self.stats.failed_steps += 1;
                 if depth >= self.scenario.coupling.max_halvings {
+                    let mut reason = failure.reason;
+                    if self.scenario.coupling.solver == CouplingSolver::Picard {
+                        reason.push_str(&self.picard_remedy(dt));
+                    }
                     return Err(VehicleBridgeError::CouplingFailed {
                         solver: self.scenario.coupling.solver.name(),
                         t: self.t(),
@@ -45,7 +49,7 @@ impl Simulation {
                         halvings: depth,
                         iterations: failure.iterations,
                         change: failure.change,
-                        reason: failure.reason,
+                        reason,
                     });
                 }
                 self.advance(0.5 * dt, depth + 1)?;
