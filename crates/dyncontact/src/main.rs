@@ -6,6 +6,7 @@
 //! Exit codes (see [`errors`]): 0 success, 1 the run failed or was interrupted, 2 bad input.
 
 mod ball_drop_cli;
+mod ball_drop_summary;
 mod bench;
 mod bench_tangential;
 mod contact_case;

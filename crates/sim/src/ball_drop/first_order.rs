@@ -2,14 +2,15 @@
 //! for contact start (guarded), maximum approach, peak force and contact end.
 
 use std::cell::RefCell;
+use std::ops::ControlFlow;
 use std::rc::Rc;
 
 use faer::MatMut;
-use integrate::ode::{Direction, Event, OdeOptions, OdeSystem, Output, solve};
+use integrate::ode::{Direction, Event, OdeOptions, OdeSystem, Output, solve_observed};
 
 use super::{
-    BallDrop, BallDropError, ContactForce, HertzImpact, Impact, Integrator, RunOutput, RunStats,
-    Sample,
+    BallDrop, BallDropError, ContactForce, HertzImpact, Impact, Integrator, Progress, RunOutput,
+    RunStats, Sample,
 };
 
 /// Shared force model (the system and the peak-force event both evaluate it, never at once).
@@ -81,12 +82,13 @@ impl OdeSystem for DropSystem {
     }
 }
 
+/// The run; `(interval, record)` as in the driver, `observer` after every accepted step.
 pub(super) fn run(
     scenario: &BallDrop,
     model: ContactForce,
     reference: &HertzImpact,
-    interval: f64,
-    record: bool,
+    (interval, record): (f64, bool),
+    observer: &mut dyn FnMut(Progress) -> ControlFlow<()>,
 ) -> Result<RunOutput, BallDropError> {
     let Integrator::Ode {
         method,
@@ -174,13 +176,19 @@ pub(super) fn run(
     }
     let output = if record { Output::Steps } else { Output::Final };
     let y0 = [scenario.height, scenario.velocity, 0.0];
-    let solved = solve(
+    let end = scenario.duration;
+    let mut steps = 0;
+    let solved = solve_observed(
         stepper.as_mut(),
         &mut sys,
         (0.0, &y0),
-        scenario.duration,
+        end,
         &mut events,
         &output,
+        &mut |t, _y| {
+            steps += 1;
+            observer(Progress { t, end, steps })
+        },
     );
     if let Some(e) = error.borrow_mut().take() {
         return Err(e);
@@ -265,6 +273,7 @@ pub(super) fn run(
         impacts,
         final_energy,
         final_time: t_end,
+        completed: !sol.stopped,
         stats: RunStats {
             method: method.name(),
             steps: st.steps,
