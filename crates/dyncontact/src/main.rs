@@ -60,6 +60,11 @@ enum Command {
         /// generalized_alpha).
         #[arg(long)]
         integrator: Option<String>,
+        /// Largest estimated work of the run in floating-point operations (default 1e15,
+        /// about a day; docs/scenarios.md): runs estimated above it are refused before they
+        /// start.
+        #[arg(long)]
+        max_work: Option<f64>,
     },
     /// Solve a quasi-static normal contact case (TOML).
     Contact {
@@ -159,7 +164,8 @@ fn run_cli() -> Result<()> {
             out,
             json,
             integrator,
-        } => run_scenario(file.as_deref(), &out, json, integrator.as_deref()),
+            max_work,
+        } => run_scenario(file.as_deref(), &out, json, integrator.as_deref(), max_work),
         Command::Contact { file, json, out } => {
             let case = contact_case::parse(&read(&file)?, base_dir(&file)).map_err(bad_input)?;
             run_contact(case, json, out.as_deref())
@@ -208,6 +214,7 @@ fn run_scenario(
     out: &Path,
     json: bool,
     integrator: Option<&str>,
+    max_work: Option<f64>,
 ) -> Result<()> {
     let (text, base) = match file {
         Some(f) => (read(f)?, base_dir(f).to_path_buf()),
@@ -218,6 +225,7 @@ fn run_scenario(
     };
     let options = sim::config::LoadOptions {
         integrator: integrator.map(str::to_string),
+        max_work,
     };
     match sim::config::load(&text, &base, &options).map_err(|e| bad_input(e.into()))? {
         ScenarioConfig::BallDrop(config) => ball_drop_cli::run(*config, out, json),

@@ -500,13 +500,10 @@ impl BallDrop {
         };
         let start = Instant::now();
         let mut run = match planned.integrator {
-            Integrator::Ode { .. } => first_order::run(
-                &planned,
-                model,
-                &reference,
-                (interval, record_series),
-                observer,
-            )?,
+            Integrator::Ode { .. } => {
+                let recording = (interval, record_series, run_plan.step_budget());
+                first_order::run(&planned, model, &reference, recording, observer)?
+            }
             Integrator::Structural { .. } => {
                 second_order::run(&planned, model, (interval, record_series), observer)?
             }

@@ -6,11 +6,12 @@ use std::ops::ControlFlow;
 use std::rc::Rc;
 
 use faer::MatMut;
+use integrate::IntegrateError;
 use integrate::ode::{Direction, Event, OdeOptions, OdeSystem, Output, solve_observed};
 
 use super::{
     BallDrop, BallDropError, ContactForce, HertzImpact, Impact, Integrator, Progress, RunOutput,
-    RunStats, Sample,
+    RunStats, Sample, invalid,
 };
 
 /// Shared force model (the system and the peak-force event both evaluate it, never at once).
@@ -82,12 +83,13 @@ impl OdeSystem for DropSystem {
     }
 }
 
-/// The run; `(interval, record)` as in the driver, `observer` after every accepted step.
+/// The run; `(interval, record)` as in the driver, an adaptive method stopped with an error
+/// after `step_budget` steps, `observer` after every accepted step.
 pub(super) fn run(
     scenario: &BallDrop,
     model: ContactForce,
     reference: &HertzImpact,
-    (interval, record): (f64, bool),
+    (interval, record, step_budget): (f64, bool, usize),
     observer: &mut dyn FnMut(Progress) -> ControlFlow<()>,
 ) -> Result<RunOutput, BallDropError> {
     let Integrator::Ode {
@@ -108,7 +110,7 @@ pub(super) fn run(
             rtol,
             atol,
             max_step: max_step.unwrap_or(f64::INFINITY),
-            max_steps: 100_000_000,
+            max_steps: step_budget,
             ..OdeOptions::default()
         }
     } else {
@@ -193,7 +195,18 @@ pub(super) fn run(
     if let Some(e) = error.borrow_mut().take() {
         return Err(e);
     }
-    let sol = solved?;
+    let sol = match solved {
+        Err(IntegrateError::TooManySteps { t, max_steps }) if adaptive => {
+            return Err(invalid(
+                "duration",
+                scenario.duration,
+                &format!(
+                    "the adaptive method reached its step budget of {max_steps} steps (20 × the plan's estimate, at least 1e6) at t = {t:e} s: the ball has come to rest on the surface or bounces ever faster, and every contact step is limited to t_c/50 ([integrator] guard_step); shorten `duration`, or use a structural method"
+                ),
+            ));
+        }
+        other => other?,
+    };
     drop(events);
     let mut model = model.borrow_mut();
 

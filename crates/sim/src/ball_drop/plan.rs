@@ -24,6 +24,14 @@ use super::{BallDrop, BallDropError, BallShape, ForceModel, HertzImpact, Integra
 pub const STEPS_PER_CONTACT: f64 = 50.0;
 /// Largest estimated step count of a run.
 pub const MAX_STEPS: f64 = 2e7;
+/// An adaptive run may take this many times its estimated steps (at least
+/// [`MIN_STEP_BUDGET`], at most [`MAX_STEPS`]) before it is stopped with an error: the
+/// estimate assumes elastic bounces, while a ball that comes to rest on the surface (damping,
+/// or an L-stable method's numerical dissipation making the bounces ever shorter) stays in
+/// contact with steps of `t_c/50` for the rest of the run.
+pub const ADAPTIVE_STEP_FACTOR: f64 = 20.0;
+/// Smallest step budget of an adaptive run.
+pub const MIN_STEP_BUDGET: f64 = 1e6;
 /// Largest estimated boundary-element work of a run: contact steps × elements².
 pub const MAX_BEM_WORK: f64 = 1e9;
 /// `|energy_drift|` above which a result is flagged (1 % of the impact energy).
@@ -89,6 +97,13 @@ pub struct RunPlan {
     pub refined: bool,
     /// Estimated number of steps of the run.
     pub estimated_steps: f64,
+}
+
+impl RunPlan {
+    /// Most steps an adaptive run may take ([`ADAPTIVE_STEP_FACTOR`]).
+    pub fn step_budget(&self) -> usize {
+        (ADAPTIVE_STEP_FACTOR * self.estimated_steps).clamp(MIN_STEP_BUDGET, MAX_STEPS) as usize
+    }
 }
 
 /// The time scale of the contact (module documentation).
