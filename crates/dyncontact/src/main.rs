@@ -60,9 +60,8 @@ enum Command {
         /// generalized_alpha).
         #[arg(long)]
         integrator: Option<String>,
-        /// Largest estimated work of the run in floating-point operations (default 1e15,
-        /// about a day; docs/scenarios.md): runs estimated above it are refused before they
-        /// start.
+        /// Largest estimated work of the run in floating-point operations (default 1e17;
+        /// docs/scenarios.md): runs estimated above it are refused before they start.
         #[arg(long)]
         max_work: Option<f64>,
     },
