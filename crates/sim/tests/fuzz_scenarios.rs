@@ -9,9 +9,12 @@
 //!   no panic, every error message names a key of the file (or the section it lacks), and no
 //!   single allocation above 1 GiB while reading (sizes are refused before allocating).
 //! * `fuzz_scenario_runs` (`#[ignore]`, long): also RUNS every accepted scenario with a time
-//!   limit and reports panics, runs over the limit, errors and non-finite outputs. Run it
-//!   with `DYNCONTACT_FUZZ_CASES=5000 cargo test --release -p sim --test fuzz_scenarios --
-//!   --ignored --nocapture` (`DYNCONTACT_FUZZ_LIMIT_S` sets the limit, default 30 s).
+//!   limit and reports panics, runs over the limit, errors and non-finite outputs, ending with
+//!   a `FIGURES:` line (the counts of issue #9). Run it with `DYNCONTACT_FUZZ_CASES=5000 cargo
+//!   test --release -p sim --test fuzz_scenarios -- --ignored --nocapture`
+//!   (`DYNCONTACT_FUZZ_LIMIT_S` sets the limit, default 30 s; `DYNCONTACT_FUZZ_MAX_WORK` the
+//!   work budget, default [`FUZZ_MAX_WORK`]). A run past the limit is stopped at its next step
+//!   through the simulations' observers and counted as a hang.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
@@ -553,9 +556,10 @@ fn fuzz_scenario_runs() {
     }
     // The figures of issue #9 (an allocation abort would have ended this process).
     println!(
-        "FIGURES: {} inputs, {} runs; panics {}, aborts 0, hangs over {limit} s {}, messages without a key {}, non-finite outputs {}",
+        "FIGURES: {} inputs, {} run ({} refused by the work budget {work:e}); panics {}, aborts 0, hangs over {limit} s {}, messages without a key {}, non-finite outputs {}",
         t.cases,
         t.accepted,
+        t.over_budget,
         t.panics.len() + t.run_panics.len(),
         t.run_over_limit.len(),
         t.without_key.len(),
