@@ -60,7 +60,7 @@ enum Command {
         /// generalized_alpha).
         #[arg(long)]
         integrator: Option<String>,
-        /// Largest estimated work of the run in floating-point operations (default 1e17;
+        /// Largest estimated work of the run in floating-point operations (default 1e16, about 1e9 per second;
         /// docs/scenarios.md): runs estimated above it are refused before they start.
         #[arg(long)]
         max_work: Option<f64>,

@@ -13,7 +13,7 @@
 //!   a `FIGURES:` line (the counts of issue #9). Run it with `DYNCONTACT_FUZZ_CASES=5000 cargo
 //!   test --release -p sim --test fuzz_scenarios -- --ignored --nocapture`
 //!   (`DYNCONTACT_FUZZ_LIMIT_S` sets the limit, default 30 s; `DYNCONTACT_FUZZ_MAX_WORK` the
-//!   work budget, default [`FUZZ_MAX_WORK`]). A run past the limit is stopped at its next step
+//!   work budget, default [`FUZZ_MAX_WORK`]; `DYNCONTACT_FUZZ_SHOW=N` prints case N). A run past the limit is stopped at its next step
 //!   through the simulations' observers and counted as a hang.
 
 use std::alloc::{GlobalAlloc, Layout, System};
@@ -258,6 +258,9 @@ fn campaign(n: usize, run: Option<(Duration, f64)>) -> Tally {
         }
         let mutated = lines.join("\n") + "\n";
         let label = format!("case {case} ({name})");
+        if std::env::var("DYNCONTACT_FUZZ_SHOW").is_ok_and(|v| v == case.to_string()) {
+            println!("{label}:\n{mutated}");
+        }
         if run.is_some() && case % 100 == 0 {
             println!(
                 "progress: {case} cases, {} accepted, {} runs ok, {} run errors, {} run panics, {} over the limit, {} non-finite; read: {} panics, {} without a key",

@@ -97,12 +97,26 @@ pub struct RunPlan {
     pub refined: bool,
     /// Estimated number of steps of the run.
     pub estimated_steps: f64,
+    /// Estimated steps in contact (each one a contact-law evaluation per stage; a
+    /// boundary-element solve with `model = "bem"`).
+    pub contact_steps: f64,
 }
 
 impl RunPlan {
     /// Most steps an adaptive run may take ([`ADAPTIVE_STEP_FACTOR`]).
     pub fn step_budget(&self) -> usize {
         (ADAPTIVE_STEP_FACTOR * self.estimated_steps).clamp(MIN_STEP_BUDGET, MAX_STEPS) as usize
+    }
+}
+
+impl BallDrop {
+    /// The plan of the run [`BallDrop::simulate`] would make (the scenario is validated first;
+    /// an absurd run is an error here too).
+    pub fn plan(&self) -> Result<RunPlan, BallDropError> {
+        let material = self.validate()?;
+        let k = super::hertz_constant(&self.shape, &material)?;
+        let reference = HertzImpact::new(self.mass, k, self.impact_speed(), self.gravity);
+        plan(self, k, &reference).map(|(p, _)| p)
     }
 }
 
@@ -221,6 +235,7 @@ pub(super) fn plan(
             contact_step,
             refined,
             estimated_steps,
+            contact_steps: contact_steps.min(estimated_steps),
         },
         integrator,
     ))
