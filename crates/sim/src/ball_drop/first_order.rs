@@ -201,7 +201,7 @@ pub(super) fn run(
                 "duration",
                 scenario.duration,
                 &format!(
-                    "the adaptive method reached its step budget of {max_steps} steps (20 × the plan's estimate, at least 1e6) at t = {t:e} s: the ball has come to rest on the surface or bounces ever faster, and every contact step is limited to t_c/50 ([integrator] guard_step); shorten `duration`, or use a structural method"
+                    "the adaptive method reached its step budget of {max_steps} steps (20 × the plan's estimate, at least 1e6) at t = {t:e} s: the ball has come to rest on the surface or bounces ever faster (every contact step is limited to t_c/50, [integrator] guard_step), or an explicit method meets a stiff contact ([contact] damping / [ball] mass); shorten `duration` or use radau5"
                 ),
             ));
         }

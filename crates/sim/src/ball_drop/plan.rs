@@ -7,7 +7,9 @@
 //! which uses the Hertz constant `K` of the actual geometry). A ball that starts at rest on
 //! the surface has no impact speed; its time scale is then the half-period `π/ω` of the
 //! oscillation linearised at the largest approach under gravity,
-//! `ω² = (3/2) K √δ* / m`.
+//! `ω² = (3/2) K √δ* / m`. An impact so slow that this half-period (with the approach of a
+//! ball released on the surface, `δ* = (5mg/(2K))^{2/3}`) is shorter than `t_c` ends at rest
+//! on the surface: the shorter of the two is the time scale.
 //!
 //! # Step refinement
 //! A fixed step longer than `t_c / STEPS_PER_CONTACT` is replaced by `t_c / STEPS_PER_CONTACT`
@@ -122,13 +124,22 @@ impl BallDrop {
 
 /// The time scale of the contact (module documentation).
 pub(super) fn contact_time(s: &BallDrop, k: f64, reference: &HertzImpact) -> f64 {
+    let half_period = |d: f64| std::f64::consts::PI / (1.5 * k * d.sqrt() / s.mass).sqrt();
     let tc = reference.contact_duration;
     if tc.is_finite() && tc > 0.0 {
-        return tc;
+        // An impact far slower than the fall under gravity over the approach (a drop from a
+        // height of nanometres) ends at rest on the surface: its time scale is that of a
+        // ball released on the surface, δ* = (5 m g / (2K))^{2/3}, when that is shorter.
+        let at_rest = (2.5 * s.mass * s.gravity / k).powf(2.0 / 3.0);
+        return if at_rest > 0.0 {
+            tc.min(half_period(at_rest))
+        } else {
+            tc
+        };
     }
     let d = reference.max_approach;
     if d > 0.0 {
-        std::f64::consts::PI / (1.5 * k * d.sqrt() / s.mass).sqrt()
+        half_period(d)
     } else {
         f64::INFINITY
     }
