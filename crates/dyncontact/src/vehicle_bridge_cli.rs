@@ -12,7 +12,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Serialize;
 use sim::config::vehicle_bridge::VehicleBridgeConfig;
 use sim::vehicle_bridge::traction::TractionSpec;
-use sim::vehicle_bridge::{ContactModel, CouplingSolver, Radau5Spec, Scenario, Simulation, run};
+use sim::vehicle_bridge::{ContactModel, CouplingSolver, Scenario, Simulation, run};
 
 use crate::errors::{BadInput, bad_input};
 use crate::interrupt::{self, Interrupted};
@@ -106,16 +106,15 @@ const MAX_STEPS: f64 = 1e9;
 /// Runs a scenario, recording every `every`-th step and `snapshots` pressure snapshots of the
 /// first wheel along its passage over the span (no CSV: as `bench` uses it).
 pub fn simulate(scenario: Scenario, every: usize, snapshots: usize) -> Result<Outcome> {
-    simulate_full(scenario, None, None, every, snapshots, None)
+    simulate_full(scenario, None, every, snapshots, None)
 }
 
-/// [`simulate`] with longitudinal friction (`traction`), an optional
-/// Radau5 integration and the recorded rows streamed to `csv`. Stops
+/// [`simulate`] with longitudinal friction (`traction`) and the recorded rows streamed to
+/// `csv`. Stops
 /// early, with `completed = false`, on an interrupt (Ctrl-C) or a failed step.
 pub fn simulate_full(
     scenario: Scenario,
     traction: Option<TractionSpec>,
-    radau: Option<Radau5Spec>,
     every: usize,
     snapshots: usize,
     csv: Option<&Path>,
@@ -126,16 +125,9 @@ pub fn simulate_full(
         ContactModel::Hertz => "hertz",
         ContactModel::Bem { .. } => "bem",
     };
-    let integrator = if radau.is_some() {
-        "radau5".to_string()
-    } else {
-        scenario.method.name().to_string()
-    };
+    let integrator = scenario.integrator.name().to_string();
     let start = Instant::now();
     let mut sim = Simulation::new(scenario).map_err(|e| bad_input(e.into()))?;
-    if let Some(spec) = radau {
-        sim.set_radau5(spec).map_err(|e| bad_input(e.into()))?;
-    }
     if let Some(spec) = traction {
         sim.set_traction(spec).map_err(|e| bad_input(e.into()))?;
     }
@@ -321,7 +313,6 @@ pub fn run(config: VehicleBridgeConfig, out: &Path, json: bool) -> Result<()> {
     let VehicleBridgeConfig {
         scenario,
         traction,
-        radau5,
         every,
         snapshots,
         warnings,
@@ -333,7 +324,6 @@ pub fn run(config: VehicleBridgeConfig, out: &Path, json: bool) -> Result<()> {
     let outcome = simulate_full(
         scenario,
         traction,
-        radau5,
         every,
         snapshots,
         Some(&run_out.path("timeseries.csv")),

@@ -12,7 +12,7 @@ use faer::{Mat, MatMut, MatRef, Par, c64};
 use crate::IntegrateError;
 
 /// Scalars the implicit methods factorise: real (`f64`) and complex (`c64`, Radau5).
-pub(crate) trait LuScalar: ComplexField + Copy {
+pub trait LuScalar: ComplexField + Copy {
     /// Modulus, used to detect a singular pivot.
     fn modulus(self) -> f64;
 }
@@ -30,8 +30,9 @@ impl LuScalar for c64 {
 }
 
 /// An `n × n` LU factorisation `P A = L U` whose matrix, permutation and workspace are
-/// allocated once; `factor` and `solve` do not allocate.
-pub(crate) struct DenseLu<T: LuScalar> {
+/// allocated once; `factor` and `solve` do not allocate. Also used by `sim` for the dense
+/// solves of the vehicle–bridge coupling.
+pub struct DenseLu<T: LuScalar> {
     lu: Mat<T>,
     perm: Vec<usize>,
     perm_inv: Vec<usize>,
@@ -47,7 +48,8 @@ impl<T: LuScalar> std::fmt::Debug for DenseLu<T> {
 }
 
 impl<T: LuScalar> DenseLu<T> {
-    pub(crate) fn new(n: usize) -> Self {
+    /// Storage and workspace for an `n × n` matrix.
+    pub fn new(n: usize) -> Self {
         let req = factor::lu_in_place_scratch::<usize, T>(n, n, Par::Seq, Default::default())
             .or(solve::solve_in_place_scratch::<usize, T>(n, 1, Par::Seq));
         Self {
@@ -58,13 +60,18 @@ impl<T: LuScalar> DenseLu<T> {
         }
     }
 
+    /// The dimension n.
+    pub fn dim(&self) -> usize {
+        self.lu.nrows()
+    }
+
     /// The matrix to be factorised; fill it, then call [`Self::factor`].
-    pub(crate) fn matrix_mut(&mut self) -> MatMut<'_, T> {
+    pub fn matrix_mut(&mut self) -> MatMut<'_, T> {
         self.lu.as_mut()
     }
 
     /// Factorise in place. Returns `false` when a pivot is zero or non-finite (singular matrix).
-    pub(crate) fn factor(&mut self) -> bool {
+    pub fn factor(&mut self) -> bool {
         let n = self.lu.nrows();
         let _ = factor::lu_in_place(
             self.lu.as_mut(),
@@ -81,7 +88,7 @@ impl<T: LuScalar> DenseLu<T> {
     }
 
     /// Overwrite `rhs` with `A⁻¹ rhs`.
-    pub(crate) fn solve_in_place(&mut self, rhs: &mut [T]) {
+    pub fn solve_in_place(&mut self, rhs: &mut [T]) {
         let n = self.lu.nrows();
         let perm = PermRef::new_checked(&self.perm, &self.perm_inv, n);
         solve::solve_in_place(
@@ -98,7 +105,7 @@ impl<T: LuScalar> DenseLu<T> {
 impl<T: LuScalar> DenseLu<T> {
     /// Copy `a` and factorise it, rejecting a numerically singular matrix: a zero or
     /// non-finite pivot, or `min |U_ii| ≤ n·ε·max |U_ii|` (`t` is reported in the error).
-    pub(crate) fn factorize(&mut self, a: MatRef<'_, T>, t: f64) -> Result<(), IntegrateError> {
+    pub fn factorize(&mut self, a: MatRef<'_, T>, t: f64) -> Result<(), IntegrateError> {
         self.lu.copy_from(a);
         self.factor();
         let n = self.lu.nrows();

@@ -475,7 +475,7 @@ impl BallDrop {
         let k = hertz_constant(&self.shape, &material)?;
         let reference = HertzImpact::new(self.mass, k, self.impact_speed(), self.gravity);
         let model = match self.model {
-            ForceModel::Hertz => ContactForce::hertz(k, self.damping),
+            ForceModel::Hertz => ContactForce::hertz(&self.shape, &material, self.damping)?,
             ForceModel::Bem { elements, tol } => {
                 // The largest patch: the Hertz approach at the first impact from the energy
                 // balance (the later impacts are no faster), or the static approach under m g.
@@ -620,46 +620,4 @@ struct RunOutput {
     /// `false` when the observer stopped the run.
     completed: bool,
     stats: RunStats,
-}
-
-/// Illinois root finder (Dowell & Jarratt 1971) on `\[a, b\]` with `f(a) f(b) ≤ 0`, to a
-/// bracket of `4ε max(1, |t|)`.
-fn find_root(
-    mut f: impl FnMut(f64) -> f64,
-    (mut a, mut fa): (f64, f64),
-    (mut b, mut fb): (f64, f64),
-) -> f64 {
-    let mut side = 0i8;
-    for _ in 0..200 {
-        if fb == 0.0 {
-            return b;
-        }
-        if fa == 0.0 {
-            return a;
-        }
-        if (b - a).abs() <= 4.0 * f64::EPSILON * b.abs().max(1.0) {
-            break;
-        }
-        let mut c = (a * fb - b * fa) / (fb - fa);
-        if !(c > a.min(b) && c < a.max(b)) {
-            c = 0.5 * (a + b);
-        }
-        let fc = f(c);
-        if (fc > 0.0) == (fb > 0.0) {
-            b = c;
-            fb = fc;
-            if side == -1 {
-                fa *= 0.5;
-            }
-            side = -1;
-        } else {
-            a = c;
-            fa = fc;
-            if side == 1 {
-                fb *= 0.5;
-            }
-            side = 1;
-        }
-    }
-    if fa.abs() < fb.abs() { a } else { b }
 }

@@ -20,7 +20,7 @@
 //!   F closes the row. In loss of contact (F = 0) the row becomes the first-order suspension
 //!   balance `P + k_s(z_b − z_w) + c_s(ż_b − ż_w) = 0` (the massless wheel hangs on the body).
 //! * Contact: the approach `δ_k = z_w − w(x_k) + r(x_k)` (r: rail irregularity, positive up)
-//!   and `F_k = F(δ_k)` by a [`ContactLaw`]: `rigid` (δ_k = 0 while F_k > 0, a Lagrange
+//!   and `F_k = F(δ_k)` by a [`halfspace::law::ContactModel`]: `rigid` (δ_k = 0 while F_k > 0, a Lagrange
 //!   multiplier: the wheel follows the rail, which is the moving-mass model of references.md
 //!   §D1.2 with all its inertia and convective terms), `hertz`, or `bem`. Loss of contact
 //!   (F = 0) and re-contact are handled by every law.
@@ -64,6 +64,7 @@
 //! under it (ż_w = ż_b = −c r'(x_k0)); the bridge starts at rest and undeflected (wheels
 //! normally start off the span, x_k0 ≤ 0).
 
+mod accept;
 mod assembly;
 mod contact;
 mod contact_eval;
@@ -78,21 +79,21 @@ mod scenario;
 mod step;
 pub mod traction;
 
+use halfspace::law::{self, LawOutput};
 use integrate::structural::{StepEquation, StructuralStepper};
 
 use assembly::Structure;
-pub use contact::{BemLaw, ContactGeometry, ContactLaw, ContactOutput, HertzLaw, RigidLaw};
+pub use contact::ContactGeometry;
 pub use error::VehicleBridgeError;
-use error::invalid;
 pub use irregularity::{Irregularity, RandomProfile, TrackSpectrum};
-use linalg::{BlockDiagonal, CapacitanceWork};
+use linalg::{BlockDiagonal, CapacitanceWork, DenseWork};
 pub use outputs::{SolverStats, WheelSample};
 pub use radau::Radau5Spec;
 pub use run::{
     Accuracy, Extremum, NoObserver, Range, RunFailure, RunObserver, RunSummary, StepInfo,
     WheelSummary,
 };
-pub use scenario::{ContactModel, CouplingSolver, CouplingSpec, Scenario, WheelSpec};
+pub use scenario::{ContactModel, CouplingSolver, CouplingSpec, Integrator, Scenario, WheelSpec};
 
 /// Standard gravity \[m/s²\].
 pub const GRAVITY: f64 = 9.81;
@@ -104,7 +105,8 @@ pub const MAX_STEPS: f64 = 1e8;
 /// The simulation: state, stepper and work space.
 pub struct Simulation {
     scenario: Scenario,
-    laws: Vec<Box<dyn ContactLaw>>,
+    /// The contact of each wheel: a force law or the rigid constraint.
+    contacts: Vec<law::ContactModel>,
     structure: Structure,
     stepper: StructuralStepper,
     eq: StepEquation,
@@ -156,7 +158,7 @@ struct Work {
     v: Vec<Vec<f64>>,
     g_act: Vec<Vec<f64>>,
     v_act: Vec<Vec<f64>>,
-    outputs: Vec<ContactOutput>,
+    outputs: Vec<LawOutput>,
     delta: Vec<f64>,
     prev_force: Vec<f64>,
     last_df: Vec<f64>,
@@ -165,7 +167,7 @@ struct Work {
     delta_tilde: Vec<f64>,
     df: Vec<f64>,
     cap: CapacitanceWork,
-    dense: Vec<f64>,
+    dense: DenseWork,
     /// Round-off bound of the step residual and its image under |A⁻¹| (n), and the contact
     /// forces' floating-point floor per wheel (see `Simulation::force_floor`).
     floor_residual: Vec<f64>,

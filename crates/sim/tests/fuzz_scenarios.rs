@@ -383,9 +383,6 @@ fn simulate(read: Read, deadline: Instant) -> RunResult {
                 let v = *v;
                 let mut s =
                     sim::vehicle_bridge::Simulation::new(v.scenario).map_err(|e| e.to_string())?;
-                if let Some(r) = v.radau5 {
-                    s.set_radau5(r).map_err(|e| e.to_string())?;
-                }
                 if let Some(t) = v.traction {
                     s.set_traction(t).map_err(|e| e.to_string())?;
                 }

@@ -6,8 +6,8 @@ use beam::{
 };
 use integrate::structural::StructuralMethod;
 use sim::vehicle_bridge::{
-    ContactGeometry, ContactModel, CouplingSolver, CouplingSpec, GRAVITY, Irregularity, Scenario,
-    Simulation, WheelSpec,
+    ContactGeometry, ContactModel, CouplingSolver, CouplingSpec, GRAVITY, Integrator, Irregularity,
+    Scenario, Simulation, WheelSpec,
 };
 
 /// Frýba / Biggs bridge of references.md §D1.3: L = 25 m, EI = 2.87e9 × 2.90, ρA = 2303 kg/m.
@@ -43,7 +43,7 @@ fn scenario(
         contact,
         geometry: geometry(),
         irregularity: Irregularity::None,
-        method: StructuralMethod::average_acceleration(),
+        integrator: Integrator::Structural(StructuralMethod::average_acceleration()),
         dt,
         duration: None,
         coupling: CouplingSpec::default(),
@@ -90,7 +90,8 @@ fn crawling_wheel_gives_static_deflection_and_weight() {
             sc.duration = Some(duration);
             // A rigid contact is an index-3 constraint: the trapezoidal rule leaves its
             // multiplier oscillating undamped after the start; generalized-α (ρ∞ = 0.5) damps it.
-            sc.method = StructuralMethod::generalized_alpha(0.5).unwrap();
+            sc.integrator =
+                Integrator::Structural(StructuralMethod::generalized_alpha(0.5).unwrap());
             let mut sim = Simulation::new(sc).unwrap();
             sim.run(|_| {}).unwrap();
             let x = sim.wheels()[0].position;

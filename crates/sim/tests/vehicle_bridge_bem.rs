@@ -3,8 +3,8 @@
 use beam::{AnalyticBeam, ModalBasis, ModalDamping, Support, UniformBeam};
 use integrate::structural::StructuralMethod;
 use sim::vehicle_bridge::{
-    ContactGeometry, ContactModel, CouplingSpec, GRAVITY, Irregularity, Scenario, Simulation,
-    WheelSpec,
+    ContactGeometry, ContactModel, CouplingSpec, GRAVITY, Integrator, Irregularity, Scenario,
+    Simulation, WheelSpec,
 };
 
 fn run(contact: ContactModel) -> (Vec<f64>, Vec<f64>, Simulation) {
@@ -40,7 +40,7 @@ fn run(contact: ContactModel) -> (Vec<f64>, Vec<f64>, Simulation) {
             length: 0.6,
             depth: 0.5e-3,
         },
-        method: StructuralMethod::generalized_alpha(0.8).unwrap(),
+        integrator: Integrator::Structural(StructuralMethod::generalized_alpha(0.8).unwrap()),
         dt: 2.5e-4,
         duration: Some(0.2),
         coupling: CouplingSpec {

@@ -5,8 +5,8 @@
 use beam::{AnalyticBeam, Derivative, ModalBasis, ModalDamping, Support, UniformBeam};
 use integrate::structural::StructuralMethod;
 use sim::vehicle_bridge::{
-    ContactGeometry, ContactModel, CouplingSpec, GRAVITY, Irregularity, Scenario, Simulation,
-    VehicleBridgeError, WheelSpec,
+    ContactGeometry, ContactModel, CouplingSpec, GRAVITY, Integrator, Irregularity, Scenario,
+    Simulation, VehicleBridgeError, WheelSpec,
 };
 
 /// Biggs's bridge (references.md §D1.3): L = 25 m, EI = 2.87e9 × 2.90, ρA = 2303 kg/m.
@@ -41,7 +41,7 @@ fn scenario(modes: usize, wheel: WheelSpec, speed: f64, contact: ContactModel) -
             poisson_ratio: 0.3,
         },
         irregularity: Irregularity::None,
-        method: StructuralMethod::generalized_alpha(0.9).unwrap(),
+        integrator: Integrator::Structural(StructuralMethod::generalized_alpha(0.9).unwrap()),
         dt: 1e-4,
         duration: None,
         coupling: CouplingSpec::default(),
@@ -177,7 +177,7 @@ fn crawling_massless_wheel_gives_static_deflection_and_weight() {
     sc.damping = ModalDamping::Uniform(0.7);
     sc.duration = Some(duration);
     sc.dt = 1e-3;
-    sc.method = StructuralMethod::generalized_alpha(0.5).unwrap();
+    sc.integrator = Integrator::Structural(StructuralMethod::generalized_alpha(0.5).unwrap());
     let mut sim = Simulation::new(sc).unwrap();
     sim.run(|_| {}).unwrap();
     assert!((sim.wheels()[0].position - 0.5 * L).abs() < 1e-9);

@@ -4,7 +4,7 @@
 use beam::{AnalyticBeam, Derivative, ModalBasis, ModalDamping, Support, UniformBeam};
 use integrate::structural::StructuralMethod;
 use sim::vehicle_bridge::{
-    ContactGeometry, ContactModel, CouplingSpec, GRAVITY, HertzLaw, Irregularity, Scenario,
+    ContactGeometry, ContactModel, CouplingSpec, GRAVITY, Integrator, Irregularity, Scenario,
     Simulation, TrackSpectrum, WheelSpec,
 };
 
@@ -39,7 +39,7 @@ fn scenario(wheels: Vec<WheelSpec>, contact: ContactModel, dt: f64, modes: usize
         contact,
         geometry: geometry(),
         irregularity: Irregularity::None,
-        method: StructuralMethod::average_acceleration(),
+        integrator: Integrator::Structural(StructuralMethod::average_acceleration()),
         dt,
         duration: None,
         coupling: CouplingSpec::default(),
@@ -191,7 +191,7 @@ fn moving_mass_matches_an_independent_integration() {
             ..WheelSpec::default()
         };
         let mut sc = scenario(vec![wheel], ContactModel::Rigid, 1e-4, modes);
-        sc.method = StructuralMethod::generalized_alpha(0.9).unwrap();
+        sc.integrator = Integrator::Structural(StructuralMethod::generalized_alpha(0.9).unwrap());
         let mut sim = Simulation::new(sc).unwrap();
         let mut hist = Vec::new();
         sim.run(|s| hist.push((s.t(), s.output_point_response().0)))
@@ -248,7 +248,7 @@ fn energy_balance_of_a_conservative_run() {
         sc.irregularity = dip.clone();
         sc.duration = Some(0.5);
         sc.coupling.tol = 1e-12;
-        let c_h = HertzLaw::new(&geometry()).unwrap().coefficient;
+        let c_h = geometry().hertz().unwrap().coefficient();
         let b = basis(modes);
         let om = b.circular_frequencies().to_vec();
         let mut sim = Simulation::new(sc).unwrap();
@@ -320,7 +320,7 @@ fn every_implicit_integrator_runs_the_coupled_step() {
             ..WheelSpec::default()
         };
         let mut sc = scenario(vec![wheel], ContactModel::Hertz, 1e-4, 10);
-        sc.method = method;
+        sc.integrator = Integrator::Structural(method);
         let mut sim = Simulation::new(sc).unwrap();
         let mut peak = 0.0f64;
         sim.run(|s| peak = peak.max(s.output_point_response().0.abs()))
@@ -363,7 +363,7 @@ fn stiff_hertz_tends_to_rigid() {
         };
         let mut sc = scenario(vec![wheel], contact, 1e-4, 10);
         sc.geometry.youngs_modulus *= e_factor;
-        sc.method = StructuralMethod::generalized_alpha(0.8).unwrap();
+        sc.integrator = Integrator::Structural(StructuralMethod::generalized_alpha(0.8).unwrap());
         sc.irregularity = Irregularity::Dip {
             position: 5.0,
             length: 1.0,

@@ -4,8 +4,8 @@
 use beam::{AnalyticBeam, ModalDamping, Support, UniformBeam};
 use integrate::structural::StructuralMethod;
 use sim::vehicle_bridge::{
-    ContactGeometry, ContactModel, CouplingSpec, GRAVITY, Irregularity, Radau5Spec, Scenario,
-    Simulation, VehicleBridgeError, WheelSpec,
+    ContactGeometry, ContactModel, CouplingSpec, GRAVITY, Integrator, Irregularity, Radau5Spec,
+    Scenario, Simulation, VehicleBridgeError, WheelSpec,
 };
 
 const L: f64 = 25.0;
@@ -42,7 +42,7 @@ fn scenario(dt: f64, contact: ContactModel, depth: f64) -> Scenario {
             length: 1.0,
             depth,
         },
-        method: StructuralMethod::average_acceleration(),
+        integrator: Integrator::Structural(StructuralMethod::average_acceleration()),
         dt,
         duration: Some(0.4),
         coupling: CouplingSpec {
@@ -96,12 +96,12 @@ fn diff(a: &[[f64; 4]], stride: usize, r: &[[f64; 4]]) -> [f64; 3] {
 #[test]
 fn newmark_converges_to_radau5_at_second_order() {
     let dt_ref = 2e-4;
-    let mut sim = Simulation::new(scenario(dt_ref, ContactModel::Hertz, 0.5e-3)).unwrap();
-    sim.set_radau5(Radau5Spec {
+    let mut sc = scenario(dt_ref, ContactModel::Hertz, 0.5e-3);
+    sc.integrator = Integrator::Radau5(Radau5Spec {
         rtol: 1e-10,
         atol: 1e-13,
-    })
-    .unwrap();
+    });
+    let sim = Simulation::new(sc).unwrap();
     assert!(sim.uses_radau5());
     let reference = run(sim);
     let stats_len = reference.len();
@@ -140,8 +140,9 @@ fn newmark_converges_to_radau5_at_second_order() {
 /// Radau5 with a rigid contact or bad tolerances is an error naming the key.
 #[test]
 fn radau5_input_errors_name_the_key() {
-    let mut sim = Simulation::new(scenario(1e-3, ContactModel::Rigid, 0.0)).unwrap();
-    let e = sim.set_radau5(Radau5Spec::default()).unwrap_err();
+    let mut sc = scenario(1e-3, ContactModel::Rigid, 0.0);
+    sc.integrator = Integrator::Radau5(Radau5Spec::default());
+    let e = Simulation::new(sc).map(|_| ()).unwrap_err();
     assert!(matches!(e, VehicleBridgeError::InvalidParameter { .. }));
     assert!(e.to_string().contains("contact.model"), "{e}");
     for (rtol, atol, key) in [
@@ -149,8 +150,9 @@ fn radau5_input_errors_name_the_key() {
         (f64::NAN, 1e-9, "integrator.rtol"),
         (1e-6, -1.0, "integrator.atol"),
     ] {
-        let mut sim = Simulation::new(scenario(1e-3, ContactModel::Hertz, 0.0)).unwrap();
-        let e = sim.set_radau5(Radau5Spec { rtol, atol }).unwrap_err();
+        let mut sc = scenario(1e-3, ContactModel::Hertz, 0.0);
+        sc.integrator = Integrator::Radau5(Radau5Spec { rtol, atol });
+        let e = Simulation::new(sc).map(|_| ()).unwrap_err();
         assert!(e.to_string().contains(key), "{e}");
     }
 }
@@ -182,14 +184,13 @@ fn radau5_wheel_jumps_and_lands() {
             depth: 2e-3,
         };
         sc.duration = Some(0.06);
-        let mut sim = Simulation::new(sc).unwrap();
         if radau {
-            sim.set_radau5(Radau5Spec {
+            sc.integrator = Integrator::Radau5(Radau5Spec {
                 rtol: 1e-10,
                 atol: 1e-13,
-            })
-            .unwrap();
+            });
         }
+        let mut sim = Simulation::new(sc).unwrap();
         let g_e = (m_w * GRAVITY + p) / m_w;
         let mut takeoff: Option<(f64, f64, f64)> = None;
         let (mut worst, mut drop, mut flight, mut landed, mut peak) =

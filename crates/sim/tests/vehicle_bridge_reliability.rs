@@ -4,8 +4,8 @@
 use beam::{AnalyticBeam, Derivative, ModalBasis, ModalDamping, Support, UniformBeam};
 use integrate::structural::StructuralMethod;
 use sim::vehicle_bridge::{
-    ContactGeometry, ContactModel, CouplingSpec, GRAVITY, Irregularity, Scenario, Simulation,
-    WheelSpec,
+    ContactGeometry, ContactModel, CouplingSpec, GRAVITY, Integrator, Irregularity, Scenario,
+    Simulation, WheelSpec,
 };
 
 const L: f64 = 25.0;
@@ -35,7 +35,7 @@ fn scenario(wheels: Vec<WheelSpec>, speed: f64, dt: f64, modes: usize) -> Scenar
             poisson_ratio: 0.3,
         },
         irregularity: Irregularity::None,
-        method: StructuralMethod::average_acceleration(),
+        integrator: Integrator::Structural(StructuralMethod::average_acceleration()),
         dt,
         duration: None,
         coupling: CouplingSpec::default(),
@@ -169,7 +169,7 @@ fn heavy_moving_mass_runs_with_the_defaults_and_matches_the_glued_mass() {
             ..WheelSpec::default()
         };
         let mut sc = scenario(vec![wheel], speed, dt, modes);
-        sc.method = method;
+        sc.integrator = Integrator::Structural(method);
         let mut sim = Simulation::new(sc).unwrap();
         let mut err = 0.0f64;
         let mut t_err = 0.0;
@@ -238,7 +238,8 @@ fn defaults_work_from_one_kilogram_to_a_locomotive() {
                 ..WheelSpec::default()
             };
             let mut sc = scenario(vec![wheel], 30.0, dt, 12);
-            sc.method = StructuralMethod::generalized_alpha(0.8).unwrap();
+            sc.integrator =
+                Integrator::Structural(StructuralMethod::generalized_alpha(0.8).unwrap());
             sc.duration = Some(0.3);
             let mut sim = Simulation::new(sc).unwrap();
             let summary = sim
@@ -290,7 +291,7 @@ fn step_size_is_checked_against_the_shortest_time_scale() {
     for (dt, flagged) in [(1e-3, true), (1e-4, false)] {
         let mut sc = scenario(vec![wheel], 30.0, dt, 12);
         sc.contact = ContactModel::Hertz;
-        sc.method = StructuralMethod::generalized_alpha(0.8).unwrap();
+        sc.integrator = Integrator::Structural(StructuralMethod::generalized_alpha(0.8).unwrap());
         sc.duration = Some(0.02);
         let mut sim = Simulation::new(sc).unwrap();
         let delta = sim.wheels()[0].approach;

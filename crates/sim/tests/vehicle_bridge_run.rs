@@ -7,8 +7,8 @@ use std::ops::ControlFlow;
 use beam::{AnalyticBeam, ModalDamping, Support, UniformBeam};
 use integrate::structural::StructuralMethod;
 use sim::vehicle_bridge::{
-    ContactGeometry, ContactModel, CouplingSpec, GRAVITY, Irregularity, Scenario, Simulation,
-    StepInfo, WheelSpec, run,
+    ContactGeometry, ContactModel, CouplingSpec, GRAVITY, Integrator, Irregularity, Scenario,
+    Simulation, StepInfo, WheelSpec, run,
 };
 
 const L: f64 = 25.0;
@@ -50,7 +50,7 @@ fn scenario() -> Scenario {
             length: 1.0,
             depth: 1e-3,
         },
-        method: StructuralMethod::generalized_alpha(0.8).unwrap(),
+        integrator: Integrator::Structural(StructuralMethod::generalized_alpha(0.8).unwrap()),
         dt: 2.5e-4,
         duration: None,
         coupling: CouplingSpec::default(),

@@ -11,8 +11,8 @@ use halfspace::{Hertz, Material, creep_coefficients};
 use integrate::structural::StructuralMethod;
 use sim::vehicle_bridge::traction::{TractionDrive, TractionMethod, TractionSpec};
 use sim::vehicle_bridge::{
-    ContactGeometry, ContactModel, CouplingSpec, GRAVITY, Irregularity, Scenario, Simulation,
-    VehicleBridgeError, WheelSpec,
+    ContactGeometry, ContactModel, CouplingSpec, GRAVITY, Integrator, Irregularity, Scenario,
+    Simulation, VehicleBridgeError, WheelSpec,
 };
 
 const GEOMETRY: ContactGeometry = ContactGeometry {
@@ -70,7 +70,7 @@ fn scenario(contact: ContactModel, steps: usize) -> Scenario {
         contact,
         geometry: GEOMETRY,
         irregularity: Irregularity::None,
-        method: StructuralMethod::generalized_alpha(0.9).unwrap(),
+        integrator: Integrator::Structural(StructuralMethod::generalized_alpha(0.9).unwrap()),
         dt,
         duration: Some(steps as f64 * dt),
         coupling: CouplingSpec {

@@ -5,7 +5,7 @@ use beam::{
 };
 use integrate::structural::StructuralMethod;
 use sim::vehicle_bridge::{
-    ContactGeometry, ContactModel, CouplingSolver, CouplingSpec, GRAVITY, HertzLaw, Irregularity,
+    ContactGeometry, ContactModel, CouplingSolver, CouplingSpec, GRAVITY, Integrator, Irregularity,
     Scenario, Simulation, WheelSpec,
 };
 
@@ -40,7 +40,7 @@ fn scenario(wheels: Vec<WheelSpec>, contact: ContactModel, dt: f64) -> Scenario 
         contact,
         geometry: geometry(),
         irregularity: Irregularity::None,
-        method: StructuralMethod::average_acceleration(),
+        integrator: Integrator::Structural(StructuralMethod::average_acceleration()),
         dt,
         duration: None,
         coupling: CouplingSpec::default(),
@@ -90,7 +90,7 @@ fn light_wheel_train_reproduces_moving_force_train() {
     // Rigid contacts are index-3 constraints: when a wheel enters an already deflected span
     // (slope kink) the trapezoidal rule's undamped multiplier oscillation grows (measured:
     // ±2.5 kN after 20 steps); generalized-α with ρ∞ = 0.9 damps it.
-    sc.method = StructuralMethod::generalized_alpha(0.9).unwrap();
+    sc.integrator = Integrator::Structural(StructuralMethod::generalized_alpha(0.9).unwrap());
     let mut sim = Simulation::new(sc).unwrap();
     let (mut err, mut peak, mut step) = (0.0f64, 0.0f64, 0);
     sim.run(|s| {
@@ -192,7 +192,7 @@ fn wheel_jumps_over_a_dip_with_every_model() {
             length: 0.4,
             depth: 2e-3,
         };
-        sc.method = StructuralMethod::BackwardEuler;
+        sc.integrator = Integrator::Structural(StructuralMethod::BackwardEuler);
         sc.duration = Some(0.1);
         sc.coupling.tol = 1e-9;
         let mut sim = Simulation::new(sc).unwrap();
@@ -237,8 +237,8 @@ fn wheel_jumps_over_a_dip_with_every_model() {
 fn picard_threshold_matches_lambda_one() {
     let m_w = 900.0;
     let load = 100e3;
-    let hertz = HertzLaw::new(&geometry()).unwrap();
-    let delta = (load / hertz.coefficient).powf(2.0 / 3.0);
+    let hertz = geometry().hertz().unwrap();
+    let delta = (load / hertz.coefficient()).powf(2.0 / 3.0);
     let k_c = 1.5 * load / delta;
     let dt_star = (m_w / (0.25 * k_c)).sqrt();
     let simulation = |dt: f64, solver: CouplingSolver, max_halvings: usize| {

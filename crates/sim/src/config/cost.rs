@@ -89,7 +89,10 @@ pub fn estimate(config: &ScenarioConfig) -> Option<WorkEstimate> {
                 ContactModel::Rigid | ContactModel::Hertz => 200.0,
                 ContactModel::Bem { elements, .. } => 3.0 * bem_solve((elements * elements) as f64),
             };
-            let radau = if v.radau5.is_some() { 6.0 } else { 1.0 };
+            let radau = match s.integrator {
+                crate::vehicle_bridge::Integrator::Radau5(_) => 6.0,
+                _ => 1.0,
+            };
             let end = s.duration.unwrap_or_else(|| {
                 let first = s
                     .wheels

@@ -10,8 +10,8 @@ use super::checks::{self, MAX_ITERATIONS, ranges};
 use super::integrator::StructuralParameters;
 use crate::vehicle_bridge::traction::{TractionDrive, TractionMethod, TractionSpec};
 use crate::vehicle_bridge::{
-    ContactGeometry, ContactModel, CouplingSolver, CouplingSpec, GRAVITY, Irregularity, Radau5Spec,
-    Scenario, TrackSpectrum, WheelSpec,
+    ContactGeometry, ContactModel, CouplingSolver, CouplingSpec, GRAVITY, Integrator, Irregularity,
+    Radau5Spec, Scenario, TrackSpectrum, WheelSpec,
 };
 
 /// Default contact geometry and material: a 0.92 m wheel (R = 0.46 m) on a rail head of
@@ -55,8 +55,6 @@ pub struct VehicleBridgeConfig {
     pub scenario: Scenario,
     /// Longitudinal friction (`[traction]`), if given.
     pub traction: Option<TractionSpec>,
-    /// Radau5 integration (`[integrator] method = "radau5"`), if chosen.
-    pub radau5: Option<Radau5Spec>,
     /// Record every n-th step (`output.every`).
     pub every: usize,
     /// Number of pressure snapshots (`output.snapshots`).
@@ -344,17 +342,16 @@ pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError
         alpha: integ.and_then(|i| i.alpha),
         rho_inf: integ.and_then(|i| i.rho_inf),
     };
-    // radau5 replaces the structural method (Simulation::set_radau5); the scenario keeps a
-    // placeholder that is not used.
-    let method = if method_name.trim().eq_ignore_ascii_case("radau5") {
-        StructuralMethod::average_acceleration()
-    } else {
-        params.method(method_name)?
+    let integrator = match radau5(integ)? {
+        Some(spec) => Integrator::Radau5(spec),
+        None => Integrator::Structural(params.method(method_name)?),
     };
     let mut warnings = Vec::new();
     if contact == ContactModel::Rigid
-        && !method_name.trim().eq_ignore_ascii_case("radau5")
-        && matches!(method, StructuralMethod::Newmark { gamma, .. } if gamma <= 0.5)
+        && matches!(
+            integrator,
+            Integrator::Structural(StructuralMethod::Newmark { gamma, .. }) if gamma <= 0.5
+        )
     {
         warnings.push(
             "rigid contact with the undamped Newmark rule (gamma = 0.5): the contact multiplier can ring and grow at a slope kink (a wheel entering a deflected span); [integrator] method = \"generalized_alpha\" or \"hht\" damps it (docs/vehicle_bridge.md)"
@@ -400,7 +397,7 @@ pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError
         contact,
         geometry,
         irregularity,
-        method,
+        integrator,
         dt,
         duration,
         coupling,
@@ -408,16 +405,12 @@ pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError
     };
     check_ranges(&scenario)?;
     check_run_length(&scenario, every)?;
-    let radau5 = radau5(file.integrator.as_ref())?;
-    if radau5.is_none() {
-        check_implicit(&scenario)?;
-    }
+    check_implicit(&scenario)?;
     check_coupling(&scenario)?;
     let traction = traction(file.traction.as_ref())?;
     Ok(VehicleBridgeConfig {
         scenario,
         traction,
-        radau5,
         every,
         snapshots,
         warnings,
@@ -582,10 +575,12 @@ fn check_run_length(s: &Scenario, every: usize) -> Result<(), ConfigError> {
 
 /// The coupled step needs an implicit structural method (not for Radau5).
 fn check_implicit(s: &Scenario) -> Result<(), ConfigError> {
-    if s.method.is_explicit() {
+    if let Integrator::Structural(method) = s.integrator
+        && method.is_explicit()
+    {
         bail!(
             "`integrator.method` = \"{}\": the coupled step needs an implicit method (newmark with beta > 0, hht, generalized_alpha, backward_euler, radau5)",
-            s.method.name()
+            method.name()
         );
     }
     Ok(())

@@ -3,12 +3,14 @@
 
 use beam::Derivative;
 use faer::{Mat, MatRef};
-use integrate::structural::{StepEquation, StructuralStepper, StructuralSystem};
+use integrate::structural::{StepEquation, StructuralMethod, StructuralStepper, StructuralSystem};
 
-use super::linalg::{BlockDiagonal, CapacitanceWork};
+use halfspace::law::{ContactModel as LawModel, LawOutput};
+
+use super::contact::{columns, wheel_contact, wheel_error};
+use super::linalg::{BlockDiagonal, CapacitanceWork, DenseWork};
 use super::{
-    BemLaw, ContactLaw, ContactModel, ContactOutput, HertzLaw, RigidLaw, Scenario, Simulation,
-    SolverStats, VehicleBridgeError, WheelSample, Work, scenario,
+    Integrator, Scenario, Simulation, SolverStats, VehicleBridgeError, WheelSample, Work, scenario,
 };
 
 /// The contact-free linear structure (bridge modes and vehicle), for the stepper.
@@ -112,15 +114,9 @@ impl Simulation {
         let force_scale = static_loads.iter().copied().fold(0.0, f64::max);
 
         // Contact laws.
-        let mut laws: Vec<Box<dyn ContactLaw>> = Vec::new();
+        let mut contacts = Vec::with_capacity(static_loads.len());
         for &load in &static_loads {
-            laws.push(match scenario.contact {
-                ContactModel::Rigid => Box::new(RigidLaw::default()),
-                ContactModel::Hertz => Box::new(HertzLaw::new(&scenario.geometry)?),
-                ContactModel::Bem { elements, tol } => {
-                    Box::new(BemLaw::new(&scenario.geometry, elements, 2.5 * load, tol)?)
-                }
-            });
+            contacts.push(wheel_contact(scenario.contact, &scenario.geometry, load)?);
         }
 
         // Static start.
@@ -128,7 +124,12 @@ impl Simulation {
         let mut forces = Vec::new();
         let mut contact_load = vec![0.0; n];
         for (k, w) in scenario.wheels.iter().enumerate() {
-            let delta = laws[k].static_approach(static_loads[k])?;
+            let delta = match &mut contacts[k] {
+                LawModel::Law(law) => law
+                    .static_approach(static_loads[k])
+                    .map_err(wheel_error(k))?,
+                LawModel::Rigid(_) => 0.0,
+            };
             let zw = delta - scenario.irregularity.height(w.position);
             q0[wheel_dof[k]] = zw;
             if let Some(ib) = body_dof[k] {
@@ -164,9 +165,15 @@ impl Simulation {
         // A massless wheel's row and column of M are zero: the stepper treats it as a massless
         // DOF (no inertia in its step row, start acceleration 0; the static start balances the
         // wheel row exactly, so (f_ext − C v − K q)_w = 0 there as well).
-        let stepper = StructuralStepper::new(scenario.method, &mut structure, 0.0, &q0, &v0)?;
+        // With Radau5 the structural stepper only holds the reported state (restarted after
+        // every output step; module `radau`), so any implicit method serves.
+        let method = match scenario.integrator {
+            Integrator::Structural(method) => method,
+            Integrator::Radau5(_) => StructuralMethod::average_acceleration(),
+        };
+        let stepper = StructuralStepper::new(method, &mut structure, 0.0, &q0, &v0)?;
         let nw = scenario.wheels.len();
-        let ncols: Vec<usize> = laws.iter().map(|l| l.columns().len()).collect();
+        let ncols: Vec<usize> = contacts.iter().map(|c| columns(c).len()).collect();
         let work = Work {
             x: vec![0.0; n],
             r: vec![0.0; n],
@@ -183,7 +190,7 @@ impl Simulation {
             v: vec![vec![0.0; n]; nw],
             g_act: vec![vec![0.0; n]; nw],
             v_act: vec![vec![0.0; n]; nw],
-            outputs: vec![ContactOutput::default(); nw],
+            outputs: vec![LawOutput::default(); nw],
             delta: vec![0.0; nw],
             prev_force: vec![0.0; nw],
             last_df: vec![0.0; nw],
@@ -192,7 +199,7 @@ impl Simulation {
             delta_tilde: vec![0.0; nw],
             df: vec![0.0; nw],
             cap: CapacitanceWork::new(n, nw),
-            dense: Vec::new(),
+            dense: DenseWork::default(),
             floor_residual: vec![0.0; n],
             floor_ainv_g: vec![0.0; n],
             force_floor: 0.0,
@@ -202,7 +209,7 @@ impl Simulation {
             .bridge
             .eval_all(scenario.output_point, Derivative::Shape, &mut output_shapes)?;
         let mut sim = Self {
-            laws,
+            contacts,
             structure,
             stepper,
             eq: StepEquation::default(),
@@ -227,6 +234,9 @@ impl Simulation {
             radau: None,
         };
         sim.initial_samples()?;
+        if let Integrator::Radau5(spec) = sim.scenario.integrator {
+            sim.start_radau5(spec)?;
+        }
         Ok(sim)
     }
 
@@ -238,16 +248,18 @@ impl Simulation {
             let q = self.stepper.q().to_vec();
             let zw = q[self.wheel_dof[k]];
             let delta = self.work.approach(k, self.wheel_dof[k], &q);
-            let mut out = if self.laws[k].is_rigid() {
-                ContactOutput {
+            let mut out = match &mut self.contacts[k] {
+                LawModel::Rigid(_) => LawOutput {
                     force: self.static_loads[k],
-                    ..ContactOutput::default()
+                    ..LawOutput::default()
+                },
+                LawModel::Law(law) => {
+                    let ncol = law.columns().len();
+                    let zero = vec![0.0; ncol];
+                    let mut cf = vec![0.0; ncol];
+                    law.evaluate(delta, &zero, &mut cf, true)
+                        .map_err(wheel_error(k))?
                 }
-            } else {
-                let ncol = self.laws[k].columns().len();
-                let zero = vec![0.0; ncol];
-                let mut cf = vec![0.0; ncol];
-                self.laws[k].evaluate(delta, &zero, &mut cf, true)?
             };
             out.iterations = 0;
             self.static_contact_stiffness[k] = out.stiffness;

@@ -2,8 +2,10 @@
 //! their contact columns, the approach, the contact forces and their modal loads.
 
 use beam::Derivative;
+use halfspace::law::{ContactModel as LawModel, LawOutput};
 
-use super::{ContactOutput, Simulation, VehicleBridgeError};
+use super::contact::{columns, wheel_error};
+use super::{Simulation, VehicleBridgeError};
 
 impl Simulation {
     /// Mode shapes and irregularity at the wheels and their contact columns at time `t`.
@@ -21,7 +23,7 @@ impl Simulation {
                 w.shape_at_wheel[k].fill(0.0);
             }
             w.r_at_wheel[k] = self.scenario.irregularity.height(x);
-            for (i, &xi) in self.laws[k].columns().iter().enumerate() {
+            for (i, &xi) in columns(&self.contacts[k]).iter().enumerate() {
                 let xc = x + xi;
                 let out = &mut w.shape_at_columns[k][i * m..(i + 1) * m];
                 if (0.0..=length).contains(&xc) {
@@ -39,40 +41,36 @@ impl Simulation {
     pub(super) fn evaluate_contacts(&mut self, tangent: bool) -> Result<(), VehicleBridgeError> {
         let m = self.scenario.bridge.n_modes();
         let w = &mut self.work;
-        for k in 0..self.laws.len() {
+        for k in 0..self.contacts.len() {
             let iw = self.wheel_dof[k];
             let defl = w.deflection_under(k, &w.x);
             let delta = w.approach(k, iw, &w.x);
             w.delta[k] = delta;
             let shapes = &w.shape_at_wheel[k];
-            let law = &mut self.laws[k];
-            let out = if law.is_rigid() {
-                let f = self.forces[k];
-                w.column_force[k][0] = f;
-                ContactOutput {
-                    force: f,
-                    ..ContactOutput::default()
+            let out = match &mut self.contacts[k] {
+                LawModel::Rigid(_) => {
+                    let f = self.forces[k];
+                    w.column_force[k][0] = f;
+                    LawOutput {
+                        force: f,
+                        ..LawOutput::default()
+                    }
                 }
-            } else {
-                let ncol = law.columns().len();
-                for i in 0..ncol {
-                    let cs = &w.shape_at_columns[k][i * m..(i + 1) * m];
-                    let wc: f64 = (0..m).map(|j| w.x[j] * cs[j]).sum();
-                    w.column_gap[k][i] = (wc - defl) - (w.r_at_columns[k][i] - w.r_at_wheel[k]);
+                LawModel::Law(law) => {
+                    let ncol = law.columns().len();
+                    for i in 0..ncol {
+                        let cs = &w.shape_at_columns[k][i * m..(i + 1) * m];
+                        let wc: f64 = (0..m).map(|j| w.x[j] * cs[j]).sum();
+                        w.column_gap[k][i] = (wc - defl) - (w.r_at_columns[k][i] - w.r_at_wheel[k]);
+                    }
+                    law.evaluate(delta, &w.column_gap[k], &mut w.column_force[k], tangent)
+                        .map_err(wheel_error(k))?
                 }
-                law.evaluate(delta, &w.column_gap[k], &mut w.column_force[k], tangent)?
             };
             w.outputs[k] = out;
             let load = &mut w.modal_load[k];
             load.fill(0.0);
-            for (i, &fc) in w.column_force[k].iter().enumerate() {
-                if fc != 0.0 {
-                    let cs = &w.shape_at_columns[k][i * m..(i + 1) * m];
-                    for j in 0..m {
-                        load[j] += fc * cs[j];
-                    }
-                }
-            }
+            add_modal_load(&w.shape_at_columns[k], &w.column_force[k], 1.0, load);
             let (gh, v) = (&mut w.g_hat[k], &mut w.v[k]);
             gh.fill(0.0);
             v.fill(0.0);
@@ -88,5 +86,27 @@ impl Simulation {
             gh[iw] = 1.0;
         }
         Ok(())
+    }
+}
+
+/// Adds the modal loads of one wheel, `I_j += Σ_i (scale F_i) w_j(x_k + ξ_i)` (module
+/// documentation of the vehicle–bridge model), to `load` (m values): `column_force` holds the
+/// column forces F_i \[N\] and `column_shapes` the m mode shapes at each column (column-major
+/// by column, ncol × m).
+pub(super) fn add_modal_load(
+    column_shapes: &[f64],
+    column_force: &[f64],
+    scale: f64,
+    load: &mut [f64],
+) {
+    let m = load.len();
+    for (i, &fc) in column_force.iter().enumerate() {
+        if fc != 0.0 {
+            let f = scale * fc;
+            let cs = &column_shapes[i * m..(i + 1) * m];
+            for j in 0..m {
+                load[j] += f * cs[j];
+            }
+        }
     }
 }

@@ -2,9 +2,12 @@
 //! Picard, quasi-Newton (Sherman–Morrison / Woodbury) and Newton iterations, the
 //! extrapolated quasi-Newton start, and the floating-point floor of the contact forces.
 
+use super::accept::{Accepted, StateUpdate};
+use super::contact::is_rigid;
+use super::contact_eval::add_modal_load;
 use super::linalg::{self, contact_update, dense_contact_update};
 use super::step::StepFailure;
-use super::{ContactOutput, CouplingSolver, Simulation, VehicleBridgeError};
+use super::{CouplingSolver, Simulation, VehicleBridgeError};
 
 impl Simulation {
     /// Quasi-Newton start without a contact evaluation: every contact law is replaced by its
@@ -17,10 +20,10 @@ impl Simulation {
     /// Skipped unless every wheel is in compliant contact with a known tangent.
     fn extrapolated_start(&mut self, s: f64) {
         let m = self.scenario.bridge.n_modes();
-        let nw = self.laws.len();
+        let nw = self.contacts.len();
         let w = &mut self.work;
         let usable = (0..nw).all(|k| {
-            !self.laws[k].is_rigid()
+            !is_rigid(&self.contacts[k])
                 && w.outputs[k].force > 0.0
                 && w.outputs[k].stiffness > 0.0
                 && w.column_force[k].iter().sum::<f64>() > 0.0
@@ -46,18 +49,17 @@ impl Simulation {
             let (gh, v) = (&mut w.g_act[k], &mut w.v_act[k]);
             gh.fill(0.0);
             v.fill(0.0);
-            for (i, &fc) in w.column_force[k].iter().enumerate() {
-                if fc != 0.0 {
-                    let cs = &w.shape_at_columns[k][i * m..(i + 1) * m];
-                    for j in 0..m {
-                        gh[j] -= scale * fc * cs[j];
-                    }
-                }
-            }
+            // I_k at the new position, held in `gh` first.
+            add_modal_load(
+                &w.shape_at_columns[k],
+                &w.column_force[k],
+                scale,
+                &mut gh[..m],
+            );
             // −R gets +s I_k on the modes and −s F_k on the wheel; ĝ = (−I/F, +1).
             for j in 0..m {
-                w.res[j] -= s * gh[j];
-                gh[j] /= force;
+                w.res[j] += s * gh[j];
+                gh[j] = -gh[j] / force;
                 v[j] = -shapes[j];
             }
             w.res[iw] -= s * force;
@@ -66,7 +68,7 @@ impl Simulation {
             w.compliance[k] = 1.0 / k_n;
             w.delta_tilde[k] = 0.0;
         }
-        let ok = contact_update(
+        let solved = contact_update(
             &self.a_matrix,
             s,
             &w.g_act[..nw],
@@ -77,7 +79,8 @@ impl Simulation {
             &mut w.df,
             &mut w.cap,
         );
-        if ok && w.res.iter().all(|d| d.is_finite()) {
+        // A singular update leaves the predictor as it is (the iteration then starts there).
+        if solved.is_ok() && w.res.iter().all(|d| d.is_finite()) {
             for (x, d) in w.x.iter_mut().zip(&w.res) {
                 *x += d;
             }
@@ -106,7 +109,7 @@ impl Simulation {
         for (i, ei) in e.iter_mut().enumerate() {
             *ei = ei.abs() + w.r[i].abs();
         }
-        for k in 0..self.laws.len() {
+        for k in 0..self.contacts.len() {
             for j in 0..m {
                 e[j] += s * w.modal_load[k][j].abs();
             }
@@ -114,7 +117,7 @@ impl Simulation {
         }
         self.a_matrix.solve_abs_in_place(e);
         let mut floor = 0.0f64;
-        for k in 0..self.laws.len() {
+        for k in 0..self.contacts.len() {
             let iw = self.wheel_dof[k];
             let shapes = &w.shape_at_wheel[k];
             let approach_scale = w.x[iw].abs()
@@ -123,7 +126,7 @@ impl Simulation {
             let propagated: f64 = w.v[k].iter().zip(e.iter()).map(|(v, y)| v.abs() * y).sum();
             w.floor_ainv_g.copy_from_slice(&w.g_hat[k]);
             self.a_matrix.solve_in_place(&mut w.floor_ainv_g);
-            let compliance = if self.laws[k].is_rigid() || w.outputs[k].stiffness <= 0.0 {
+            let compliance = if is_rigid(&self.contacts[k]) || w.outputs[k].stiffness <= 0.0 {
                 0.0
             } else {
                 1.0 / w.outputs[k].stiffness
@@ -171,7 +174,7 @@ impl Simulation {
         if self.scenario.coupling.solver == CouplingSolver::QuasiNewton {
             self.extrapolated_start(s);
         }
-        let nw = self.laws.len();
+        let nw = self.contacts.len();
         let tol = self.scenario.coupling.tol * self.force_scale;
         let solver = self.scenario.coupling.solver;
         let mut change = f64::INFINITY;
@@ -204,7 +207,7 @@ impl Simulation {
             if it > 1 {
                 let mut c = 0.0f64;
                 for k in 0..nw {
-                    let d = if self.laws[k].is_rigid() {
+                    let d = if is_rigid(&self.contacts[k]) {
                         w.last_df[k].abs()
                     } else {
                         (w.outputs[k].force - w.prev_force[k]).abs()
@@ -256,15 +259,15 @@ impl Simulation {
                 self.force_floor(s);
             }
             let w = &mut self.work;
-            let ok = match solver {
+            let solved = match solver {
                 CouplingSolver::Picard => {
                     self.a_matrix.solve_in_place(&mut w.res);
-                    true
+                    Ok(())
                 }
                 CouplingSolver::QuasiNewton | CouplingSolver::Newton => {
                     w.active.clear();
                     for k in 0..nw {
-                        let rigid = self.laws[k].is_rigid();
+                        let rigid = is_rigid(&self.contacts[k]);
                         let active = if rigid {
                             self.forces[k] > 0.0 || w.delta[k] > 0.0
                         } else {
@@ -289,7 +292,7 @@ impl Simulation {
                         w.v_act[a].copy_from_slice(&w.v[k]);
                     }
                     let (g_hat, v) = (&w.g_act[..ka], &w.v_act[..ka]);
-                    let ok = if solver == CouplingSolver::QuasiNewton {
+                    let solved = if solver == CouplingSolver::QuasiNewton {
                         contact_update(
                             &self.a_matrix,
                             s,
@@ -316,21 +319,21 @@ impl Simulation {
                     };
                     clamped = false;
                     for (a, &k) in w.active.iter().enumerate() {
-                        if self.laws[k].is_rigid() {
+                        if is_rigid(&self.contacts[k]) {
                             clamped |= self.forces[k] + w.df[a] < 0.0;
                             let f_new = (self.forces[k] + w.df[a]).max(0.0);
                             w.last_df[k] = f_new - self.forces[k];
                             self.forces[k] = f_new;
                         }
                     }
-                    ok
+                    solved
                 }
             };
-            if !ok {
+            if let Err(singular) = solved {
                 return Err(StepFailure {
                     iterations,
                     change,
-                    reason: "singular coupled step matrix".to_string(),
+                    reason: format!("{singular} in the coupled step"),
                     fatal: None,
                 });
             }
@@ -358,7 +361,7 @@ impl Simulation {
                 if predicted <= tol.max(w.force_floor) && all_positive {
                     for (a, &k) in w.active.iter().enumerate() {
                         let f_old = w.outputs[k].force;
-                        let f_new = if self.laws[k].is_rigid() {
+                        let f_new = if is_rigid(&self.contacts[k]) {
                             self.forces[k]
                         } else {
                             f_old + w.df[a]
@@ -395,51 +398,15 @@ impl Simulation {
                 fatal: None,
             });
         }
-        // Accept: the generalized contact force at t_{n+1}.
-        let m = self.scenario.bridge.n_modes();
-        let w = &self.work;
-        self.contact_load.fill(0.0);
-        for k in 0..nw {
-            for j in 0..m {
-                self.contact_load[j] += w.modal_load[k][j];
-            }
-            self.contact_load[self.wheel_dof[k]] = -w.outputs[k].force;
-        }
-        self.structure
-            .contact_load
-            .copy_from_slice(&self.contact_load);
-        let x = std::mem::take(&mut self.work.x);
-        let finished = self.stepper.finish_step(&mut self.structure, dt, &x);
-        self.work.x = x;
-        finished.map_err(|e| fatal(e.into()))?;
-        self.stats.steps += 1;
-        self.stats.iterations += iterations;
-        self.stats.max_iterations = self.stats.max_iterations.max(iterations);
-        self.stats.contact_iterations += contact_iterations;
-        self.stats.max_force_floor = self.stats.max_force_floor.max(self.work.force_floor);
-        let q = self.stepper.q();
-        let a = self.stepper.a();
-        for k in 0..nw {
-            let iw = self.wheel_dof[k];
-            let contact = self.work.outputs[k];
-            let touching = contact.force > 0.0;
-            if self.in_contact[k] && !touching {
-                self.loss_events += 1;
-                self.wheel_loss_events[k] += 1;
-            }
-            self.in_contact[k] = touching;
-            self.forces[k] = contact.force;
-            let sample = &mut self.samples[k];
-            sample.wheel_displacement = q[iw];
-            sample.wheel_acceleration = a[iw];
-            sample.body_displacement = self.body_dof[k].map_or(q[iw], |ib| q[ib]);
-            sample.body_acceleration = self.body_dof[k].map_or(0.0, |ib| a[ib]);
-            sample.approach = self.work.delta[k];
-            sample.contact = ContactOutput {
-                iterations: contact_iterations,
-                ..contact
-            };
-        }
-        Ok(())
+        self.accept(
+            StateUpdate::Finish { dt },
+            Accepted {
+                steps: 1,
+                iterations,
+                contact_iterations,
+                rejected: 0,
+            },
+        )
+        .map_err(fatal)
     }
 }

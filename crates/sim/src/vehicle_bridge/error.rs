@@ -23,6 +23,13 @@ pub enum VehicleBridgeError {
     /// The half-space contact solver failed.
     #[error("contact solver: {0}")]
     Contact(#[from] ContactError),
+    /// The contact law of wheel `wheel` (0-based) failed during a step.
+    #[error("contact law of wheel {wheel}: {source}")]
+    WheelContact {
+        wheel: usize,
+        #[source]
+        source: ContactError,
+    },
     /// The contact-free step matrix A has a singular (or non-finite) block at `dof`.
     #[error("singular step matrix at DOF {dof}: {reason}")]
     SingularStepMatrix { dof: usize, reason: String },

@@ -10,8 +10,20 @@
 //!   k × k capacitance matrix `I_k + VᵀA⁻¹U` (all wheels couple through the bridge modes).
 //!
 //! [`contact_update`] applies both in a force form that also admits rigid contacts;
-//! [`dense_contact_update`] (Gaussian elimination with partial pivoting on the bordered
-//! system) is the reference.
+//! [`dense_contact_update`] (an LU factorisation with partial pivoting of the bordered system)
+//! is the reference. The dense solves (the k × k capacitance matrix, the bordered system) use
+//! `integrate`'s [`DenseLu`] (faer's partial-pivoting LU in preallocated storage). A singular
+//! block or matrix is an error ([`Singular`]), never skipped.
+
+use integrate::DenseLu;
+
+/// A singular or non-finite matrix met by a solve of the coupled step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
+#[error("singular or non-finite {what}")]
+pub struct Singular {
+    /// Which matrix: `step-matrix block`, `capacitance matrix`, `bordered matrix`.
+    pub what: &'static str,
+}
 
 /// A block-diagonal matrix with 1×1 and 2×2 blocks, stored with the block inverses.
 #[derive(Debug, Clone, Default)]
@@ -25,6 +37,10 @@ pub struct BlockDiagonal {
 
 /// Marker for a 1×1 block.
 const NONE: usize = usize::MAX;
+
+const SINGULAR_BLOCK: Singular = Singular {
+    what: "step-matrix block",
+};
 
 impl BlockDiagonal {
     /// An empty matrix of dimension `n` (every index must then be covered by a block).
@@ -47,26 +63,36 @@ impl BlockDiagonal {
         self.n
     }
 
-    /// Adds the 1×1 block `a` at index `i`. Returns `false` if `a` is zero or not finite.
-    pub fn push1(&mut self, i: usize, a: f64) -> bool {
+    /// Adds the 1×1 block `a` at index `i`; an error if `a` is zero or not finite (the block
+    /// is then not added).
+    pub fn push1(&mut self, i: usize, a: f64) -> Result<(), Singular> {
         if a == 0.0 || !a.is_finite() {
-            return false;
+            return Err(SINGULAR_BLOCK);
         }
         self.blocks.push((i, NONE, [1.0 / a, 0.0, 0.0, 0.0]));
         self.entries.push([a, 0.0, 0.0, 0.0]);
-        true
+        Ok(())
     }
 
-    /// Adds the 2×2 block `[[a, b], [c, d]]` on indices (i, j). Returns `false` if singular.
-    pub fn push2(&mut self, i: usize, j: usize, a: f64, b: f64, c: f64, d: f64) -> bool {
+    /// Adds the 2×2 block `[[a, b], [c, d]]` on indices (i, j); an error if it is singular or
+    /// not finite (the block is then not added).
+    pub fn push2(
+        &mut self,
+        i: usize,
+        j: usize,
+        a: f64,
+        b: f64,
+        c: f64,
+        d: f64,
+    ) -> Result<(), Singular> {
         let det = a * d - b * c;
         if det == 0.0 || !det.is_finite() {
-            return false;
+            return Err(SINGULAR_BLOCK);
         }
         self.blocks
             .push((i, j, [d / det, -b / det, -c / det, a / det]));
         self.entries.push([a, b, c, d]);
-        true
+        Ok(())
     }
 
     /// `x ← A⁻¹ x` in place.
@@ -108,6 +134,18 @@ impl BlockDiagonal {
         }
     }
 
+    /// Writes the entries of A into the upper-left n × n corner of `mat` (the rest untouched).
+    pub fn write_into(&self, mat: &mut faer::MatMut<'_, f64>) {
+        for (&(i, j, _), e) in self.blocks.iter().zip(&self.entries) {
+            mat[(i, i)] = e[0];
+            if j != NONE {
+                mat[(i, j)] = e[1];
+                mat[(j, i)] = e[2];
+                mat[(j, j)] = e[3];
+            }
+        }
+    }
+
     /// The dense matrix, row-major n × n.
     pub fn to_dense(&self) -> Vec<f64> {
         let n = self.n;
@@ -124,47 +162,13 @@ impl BlockDiagonal {
     }
 }
 
-/// Solves the dense system `a x = b` (row-major n × n, overwritten) by Gaussian elimination with
-/// partial pivoting; `b` is overwritten with x. Returns `false` if a pivot is zero.
-pub fn dense_solve(a: &mut [f64], b: &mut [f64]) -> bool {
-    let n = b.len();
-    debug_assert_eq!(a.len(), n * n);
-    for k in 0..n {
-        let p = (k..n)
-            .max_by(|&i, &j| a[i * n + k].abs().total_cmp(&a[j * n + k].abs()))
-            .unwrap_or(k);
-        if a[p * n + k] == 0.0 || !a[p * n + k].is_finite() {
-            return false;
-        }
-        if p != k {
-            for c in 0..n {
-                a.swap(k * n + c, p * n + c);
-            }
-            b.swap(k, p);
-        }
-        let piv = a[k * n + k];
-        for i in k + 1..n {
-            let f = a[i * n + k] / piv;
-            if f != 0.0 {
-                for c in k..n {
-                    a[i * n + c] -= f * a[k * n + c];
-                }
-                b[i] -= f * b[k];
-            }
-        }
-    }
-    for k in (0..n).rev() {
-        let s: f64 = (k + 1..n).map(|c| a[k * n + c] * b[c]).sum();
-        b[k] = (b[k] - s) / a[k * n + k];
-    }
-    true
-}
-
-/// Work space of [`contact_update`] for up to `k_max` wheels.
-#[derive(Debug, Clone, Default)]
+/// Work space of [`contact_update`] for up to `k_max` wheels: A⁻¹ĝ per wheel and one LU of
+/// each capacitance-matrix size 2..=k_max (allocated once).
+#[derive(Debug, Default)]
 pub struct CapacitanceWork {
     ainv_g: Vec<Vec<f64>>,
-    cap: Vec<f64>,
+    /// `lu[k - 2]` factorises the k × k capacitance matrix.
+    lu: Vec<DenseLu<f64>>,
 }
 
 impl CapacitanceWork {
@@ -172,9 +176,29 @@ impl CapacitanceWork {
     pub fn new(n: usize, k_max: usize) -> Self {
         Self {
             ainv_g: vec![vec![0.0; n]; k_max],
-            cap: vec![0.0; k_max * k_max],
+            lu: (2..=k_max).map(DenseLu::new).collect(),
         }
     }
+}
+
+/// Work space of [`dense_contact_update`]: the LU of each bordered size n + k met so far
+/// (allocated at the first use of a size) and the right-hand side.
+#[derive(Debug, Default)]
+pub struct DenseWork {
+    lu: Vec<DenseLu<f64>>,
+    rhs: Vec<f64>,
+}
+
+/// The LU storage for an `m × m` matrix among `lus` (added at the first use of a size).
+fn lu_of_size(lus: &mut Vec<DenseLu<f64>>, m: usize) -> &mut DenseLu<f64> {
+    let i = match lus.iter().position(|lu| lu.dim() == m) {
+        Some(i) => i,
+        None => {
+            lus.push(DenseLu::new(m));
+            lus.len() - 1
+        }
+    };
+    &mut lus[i]
 }
 
 /// One linearised (quasi-)Newton update of the coupled step (references.md §D4.2), in the
@@ -193,7 +217,7 @@ impl CapacitanceWork {
 /// For compliant contacts this is the Woodbury formula for `(A + s Ĝ K_c Vᵀ)⁻¹` (capacitance
 /// matrix scaled by K_c⁻¹) and, for one wheel, Sherman–Morrison with the denominator
 /// `1 + λ`, `λ = s k_c vᵀA⁻¹ĝ` (references.md §D4.2). On entry `x` holds −R; on exit Δx, and `df`
-/// holds ΔF. Returns `false` if the capacitance matrix is singular.
+/// holds ΔF. An error if the capacitance matrix is singular.
 pub fn contact_update(
     a: &BlockDiagonal,
     s: f64,
@@ -204,11 +228,11 @@ pub fn contact_update(
     x: &mut [f64],
     df: &mut [f64],
     work: &mut CapacitanceWork,
-) -> bool {
+) -> Result<(), Singular> {
     let k = g_hat.len();
     a.solve_in_place(x);
     if k == 0 {
-        return true;
+        return Ok(());
     }
     if work.ainv_g.len() < k || work.ainv_g[0].len() != x.len() {
         *work = CapacitanceWork::new(x.len(), k);
@@ -221,21 +245,23 @@ pub fn contact_update(
         // Sherman–Morrison: ΔF = (vᵀy + δ̃)/(1/k_c + s vᵀA⁻¹ĝ) = k_c(vᵀy + δ̃)/(1 + λ).
         let den = compliance[0] + s * dot(v[0].as_ref(), &work.ainv_g[0]);
         if den == 0.0 || !den.is_finite() {
-            return false;
+            return Err(SINGULAR_CAPACITANCE);
         }
         df[0] = (dot(v[0].as_ref(), x) + delta_tilde[0]) / den;
     } else {
-        let cap = &mut work.cap[..k * k];
+        let lu = &mut work.lu[k - 2];
+        let mut cap = lu.matrix_mut();
         for r in 0..k {
             for c in 0..k {
                 let diag = if r == c { compliance[r] } else { 0.0 };
-                cap[r * k + c] = diag + s * dot(v[r].as_ref(), &work.ainv_g[c]);
+                cap[(r, c)] = diag + s * dot(v[r].as_ref(), &work.ainv_g[c]);
             }
             df[r] = dot(v[r].as_ref(), x) + delta_tilde[r];
         }
-        if !dense_solve(cap, &mut df[..k]) {
-            return false;
+        if !lu.factor() {
+            return Err(SINGULAR_CAPACITANCE);
         }
+        lu.solve_in_place(&mut df[..k]);
     }
     for c in 0..k {
         let f = s * df[c];
@@ -243,8 +269,12 @@ pub fn contact_update(
             *xi -= f * wi;
         }
     }
-    true
+    Ok(())
 }
+
+const SINGULAR_CAPACITANCE: Singular = Singular {
+    what: "capacitance matrix",
+};
 
 /// The same update as [`contact_update`] by one dense solve of the bordered system
 ///
@@ -253,7 +283,8 @@ pub fn contact_update(
 /// [ Vᵀ  −K_c⁻¹] [ΔF] = [ −δ̃ ]
 /// ```
 ///
-/// (the reference "full Newton" solve). Same argument conventions; `work` is resized as needed.
+/// (the reference "full Newton" solve). Same argument conventions; `work` keeps the LU
+/// storage of each size met.
 pub fn dense_contact_update(
     a: &BlockDiagonal,
     s: f64,
@@ -263,33 +294,40 @@ pub fn dense_contact_update(
     delta_tilde: &[f64],
     x: &mut [f64],
     df: &mut [f64],
-    work: &mut Vec<f64>,
-) -> bool {
+    work: &mut DenseWork,
+) -> Result<(), Singular> {
     let n = x.len();
     let k = g_hat.len();
     let m = n + k;
-    work.clear();
-    work.resize(m * m + m, 0.0);
-    let (mat, rhs) = work.split_at_mut(m * m);
-    let dense_a = a.to_dense();
+    let rhs = &mut work.rhs;
+    rhs.clear();
+    rhs.resize(m, 0.0);
+    let lu = lu_of_size(&mut work.lu, m);
+    let mut mat = lu.matrix_mut();
+    mat.fill(0.0);
+    a.write_into(&mut mat);
     for i in 0..n {
-        mat[i * m..i * m + n].copy_from_slice(&dense_a[i * n..(i + 1) * n]);
         for c in 0..k {
-            mat[i * m + n + c] = s * g_hat[c].as_ref()[i];
+            mat[(i, n + c)] = s * g_hat[c].as_ref()[i];
         }
         rhs[i] = x[i];
     }
     for c in 0..k {
-        mat[(n + c) * m..(n + c) * m + n].copy_from_slice(v[c].as_ref());
-        mat[(n + c) * m + n + c] = -compliance[c];
+        for (j, &vj) in v[c].as_ref().iter().enumerate() {
+            mat[(n + c, j)] = vj;
+        }
+        mat[(n + c, n + c)] = -compliance[c];
         rhs[n + c] = -delta_tilde[c];
     }
-    if !dense_solve(mat, rhs) {
-        return false;
+    if !lu.factor() {
+        return Err(Singular {
+            what: "bordered matrix",
+        });
     }
+    lu.solve_in_place(rhs);
     x.copy_from_slice(&rhs[..n]);
     df[..k].copy_from_slice(&rhs[n..]);
-    true
+    Ok(())
 }
 
 /// The dot product.

@@ -1,9 +1,9 @@
 //! What a simulation reports: per-wheel samples, coupling statistics, the state and the
 //! bridge response (deflection, output point), and the run helpers.
 
-use super::{
-    ContactOutput, RunSummary, Scenario, Simulation, StepInfo, VehicleBridgeError, run, traction,
-};
+use halfspace::law::{ContactModel as LawModel, LawOutput};
+
+use super::{RunSummary, Scenario, Simulation, StepInfo, VehicleBridgeError, run, traction};
 
 /// Per-wheel state reported at a time.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -20,8 +20,8 @@ pub struct WheelSample {
     pub wheel_acceleration: f64,
     /// Approach δ \[m\].
     pub approach: f64,
-    /// Contact force and patch.
-    pub contact: ContactOutput,
+    /// Contact force and patch (for the rigid constraint only the force, the multiplier).
+    pub contact: LawOutput,
 }
 
 /// Coupling statistics of a run.
@@ -149,7 +149,10 @@ impl Simulation {
 
     /// The centreline pressure of wheel `k`'s last contact evaluation (ξ \[m\], p \[Pa\]).
     pub fn centreline_pressure(&self, k: usize, out: &mut Vec<(f64, f64)>) {
-        self.laws[k].centreline_pressure(out);
+        match &self.contacts[k] {
+            LawModel::Law(law) => law.centreline_pressure(out),
+            LawModel::Rigid(_) => out.clear(),
+        }
     }
 
     /// Switches on longitudinal friction (module [`traction`]; weak coupling after every
@@ -158,7 +161,7 @@ impl Simulation {
         self.traction = Some(traction::Traction::new(
             spec,
             &self.scenario.geometry,
-            &self.laws,
+            &self.contacts,
             self.scenario.speed,
         )?);
         Ok(())

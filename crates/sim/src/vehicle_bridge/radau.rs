@@ -1,4 +1,4 @@
-//! Radau5 for the coupled vehicle–bridge step ([`Simulation::set_radau5`]).
+//! Radau5 for the coupled vehicle–bridge step ([`Integrator::Radau5`](super::Integrator::Radau5)).
 //!
 //! The coupled system (bridge modes and vehicle DOFs, with the contact forces) is written as
 //! the first-order ODE `y = [x, ẋ]`,
@@ -23,17 +23,22 @@
 //! A compliant contact is needed (`hertz` or `bem`): a rigid contact (or a massless wheel) is
 //! a differential-algebraic constraint, not an ODE. Loss of contact needs no special handling:
 //! F(δ) = C_H δ₊^{3/2} is continuously differentiable, and the adaptive step control resolves
-//! the flight and the landing. After every output step the structural stepper that holds the
-//! reported state is restarted at (x, ẋ) with the acceleration M⁻¹(f_g − C v − K x + Σ G_k), so
-//! the accessors of [`Simulation`] report the Radau5 state.
+//! the flight and the landing. A contact-law error inside the right-hand side or the Jacobian
+//! stops the step through `integrate`'s fallible right-hand side ([`OdeSystem::try_rhs`],
+//! carried as [`integrate::IntegrateError::Callback`]). Every output step is accepted as the
+//! structural path's steps are (`accept.rs`): the structural stepper that holds the reported
+//! state is restarted at (x, ẋ) with the acceleration M⁻¹(f_g − C v − K x + Σ G_k), so the
+//! accessors of [`Simulation`] report the Radau5 state.
 
 use faer::MatMut;
+use integrate::CallbackError;
 use integrate::ode::{OdeOptions, OdeStepper, OdeSystem, Radau5};
 
-use super::{ContactOutput, Simulation, VehicleBridgeError, invalid};
+use super::accept::{Accepted, StateUpdate};
+use super::{Simulation, VehicleBridgeError};
 
 /// Tolerances of the Radau5 path (local error test `|e_i| ≤ atol + rtol |y_i|`, on
-/// displacements \[m\] and modal coordinates [m √kg] and their rates).
+/// displacements \[m\] and modal coordinates \[m √kg\] and their rates).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Radau5Spec {
     /// Relative tolerance (> 0).
@@ -55,33 +60,20 @@ impl Default for Radau5Spec {
 pub(super) struct RadauPath {
     stepper: Radau5,
     y: Vec<f64>,
-    /// First contact-law error met inside the right-hand side (which cannot return it).
-    error: Option<VehicleBridgeError>,
 }
 
 /// The coupled system, borrowing the simulation during one Radau5 step.
 struct Coupled<'a> {
     sim: &'a mut Simulation,
-    error: &'a mut Option<VehicleBridgeError>,
 }
 
 impl Coupled<'_> {
     /// Contact forces at (t, x): fills the simulation's work space (outputs, modal loads, ĝ, v).
-    fn contacts(&mut self, t: f64, x: &[f64], tangent: bool) -> bool {
+    fn contacts(&mut self, t: f64, x: &[f64], tangent: bool) -> Result<(), VehicleBridgeError> {
         let sim = &mut *self.sim;
         sim.work.x.copy_from_slice(x);
-        let r = sim
-            .wheel_geometry(t)
-            .and_then(|()| sim.evaluate_contacts(tangent));
-        match r {
-            Ok(()) => true,
-            Err(e) => {
-                if self.error.is_none() {
-                    *self.error = Some(e);
-                }
-                false
-            }
-        }
+        sim.wheel_geometry(t)?;
+        sim.evaluate_contacts(tangent)
     }
 }
 
@@ -90,13 +82,17 @@ impl OdeSystem for Coupled<'_> {
         2 * self.sim.work.x.len()
     }
 
+    /// Not called: the methods evaluate [`OdeSystem::try_rhs`].
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
+        if self.try_rhs(t, y, dydt).is_err() {
+            dydt.fill(f64::NAN);
+        }
+    }
+
+    fn try_rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) -> Result<(), CallbackError> {
         let n = y.len() / 2;
         let (x, v) = y.split_at(n);
-        if !self.contacts(t, x, false) {
-            dydt.fill(f64::NAN);
-            return;
-        }
+        self.contacts(t, x, false).map_err(CallbackError::new)?;
         let sim = &*self.sim;
         let st = &sim.structure;
         let m = sim.scenario.bridge.n_modes();
@@ -117,13 +113,18 @@ impl OdeSystem for Coupled<'_> {
         for i in 0..n {
             dydt[n + i] /= st.mass[(i, i)];
         }
+        Ok(())
     }
 
-    fn jacobian(&mut self, t: f64, y: &[f64], mut jac: MatMut<'_, f64>) -> bool {
+    fn try_jacobian(
+        &mut self,
+        t: f64,
+        y: &[f64],
+        mut jac: MatMut<'_, f64>,
+    ) -> Result<bool, CallbackError> {
         let n = y.len() / 2;
-        if !self.contacts(t, &y[..n], true) {
-            return false;
-        }
+        self.contacts(t, &y[..n], true)
+            .map_err(CallbackError::new)?;
         let sim = &*self.sim;
         let st = &sim.structure;
         jac.fill(0.0);
@@ -135,7 +136,7 @@ impl OdeSystem for Coupled<'_> {
                 jac[(n + i, n + j)] = -st.damping[(i, j)] * inv_m;
             }
         }
-        for k in 0..sim.laws.len() {
+        for k in 0..sim.contacts.len() {
             let kc = sim.work.outputs[k].stiffness;
             if kc == 0.0 {
                 continue;
@@ -151,31 +152,37 @@ impl OdeSystem for Coupled<'_> {
                 }
             }
         }
-        true
+        Ok(true)
+    }
+
+    /// Not called: the methods evaluate [`OdeSystem::try_jacobian`].
+    fn jacobian(&mut self, t: f64, y: &[f64], jac: MatMut<'_, f64>) -> bool {
+        self.try_jacobian(t, y, jac).unwrap_or(false)
+    }
+}
+
+/// A Radau5 failure: the contact law's own error when the right-hand side failed, else the
+/// integrator's error as a coupling failure at `t`.
+fn radau_error(e: integrate::IntegrateError, t: f64, dt: f64) -> VehicleBridgeError {
+    if e.callback_error::<VehicleBridgeError>().is_some() {
+        return VehicleBridgeError::Integrate(e);
+    }
+    VehicleBridgeError::CouplingFailed {
+        solver: "radau5",
+        t,
+        dt,
+        halvings: 0,
+        iterations: 0,
+        change: f64::NAN,
+        reason: e.to_string(),
     }
 }
 
 impl Simulation {
-    /// Switches the time integration to Radau5 (module [`radau`](self)); the scenario's
-    /// structural `method` is then unused. Call before the first step. Errors: a rigid contact
-    /// (`contact.model`), non-positive or non-finite tolerances (`integrator.rtol`,
-    /// `integrator.atol`).
-    pub fn set_radau5(&mut self, spec: Radau5Spec) -> Result<(), VehicleBridgeError> {
-        if self.laws.iter().any(|l| l.is_rigid()) {
-            return Err(invalid(
-                "contact.model",
-                f64::NAN,
-                "radau5 needs a compliant contact (hertz or bem): a rigid contact is an algebraic constraint, not an ODE",
-            ));
-        }
-        for (name, v) in [
-            ("integrator.rtol", spec.rtol),
-            ("integrator.atol", spec.atol),
-        ] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(invalid(name, v, "must be positive and finite"));
-            }
-        }
+    /// Sets up the Radau5 path at the start state (module [`radau`](self)); called by
+    /// [`Simulation::new`] for [`Integrator::Radau5`](super::Integrator::Radau5) (the scenario
+    /// check has rejected rigid contact and bad tolerances).
+    pub(super) fn start_radau5(&mut self, spec: Radau5Spec) -> Result<(), VehicleBridgeError> {
         let n = self.work.x.len();
         let options = OdeOptions {
             max_step: self.scenario.dt,
@@ -186,24 +193,10 @@ impl Simulation {
         let mut y = self.stepper.q().to_vec();
         y.extend_from_slice(self.stepper.v());
         let t = self.stepper.t();
-        let mut error = None;
-        let r = stepper.set_state(
-            &mut Coupled {
-                sim: self,
-                error: &mut error,
-            },
-            t,
-            &y,
-        );
-        if let Some(e) = error {
-            return Err(e);
-        }
-        r?;
-        self.radau = Some(RadauPath {
-            stepper,
-            y,
-            error: None,
-        });
+        stepper
+            .set_state(&mut Coupled { sim: self }, t, &y)
+            .map_err(|e| radau_error(e, t, self.scenario.dt))?;
+        self.radau = Some(RadauPath { stepper, y });
         Ok(())
     }
 
@@ -227,87 +220,27 @@ impl Simulation {
         path.stepper.set_stop_time(Some(t_end));
         path.stepper.set_max_step(dt);
         let before = path.stepper.stats();
-        let mut error = path.error.take();
         while path.stepper.t() < t_end {
-            let r = path.stepper.step(&mut Coupled {
-                sim: self,
-                error: &mut error,
-            });
-            if let Some(e) = error.take() {
-                return Err(e);
-            }
-            if let Err(e) = r {
-                return Err(VehicleBridgeError::CouplingFailed {
-                    solver: "radau5",
-                    t: path.stepper.t(),
-                    dt,
-                    halvings: 0,
-                    iterations: 0,
-                    change: f64::NAN,
-                    reason: e.to_string(),
-                });
-            }
+            path.stepper
+                .step(&mut Coupled { sim: self })
+                .map_err(|e| radau_error(e, path.stepper.t(), dt))?;
         }
         let after = path.stepper.stats();
         path.y.copy_from_slice(path.stepper.y());
         let n = self.work.x.len();
         let (x, v) = path.y.split_at(n);
         // Contact state at the output time (the tangent as well, for the report).
-        let mut error = None;
-        let ok = Coupled {
-            sim: self,
-            error: &mut error,
-        }
-        .contacts(t_end, x, true);
-        if !ok {
-            return Err(error.unwrap_or_else(|| invalid("contact", f64::NAN, "contact failed")));
-        }
-        let m = self.scenario.bridge.n_modes();
-        let nw = self.laws.len();
-        self.contact_load.fill(0.0);
-        for k in 0..nw {
-            for j in 0..m {
-                self.contact_load[j] += self.work.modal_load[k][j];
-            }
-            self.contact_load[self.wheel_dof[k]] = -self.work.outputs[k].force;
-        }
-        self.structure
-            .contact_load
-            .copy_from_slice(&self.contact_load);
-        self.stepper
-            .restart(&mut self.structure, t_end, x, v)
-            .map_err(VehicleBridgeError::from)?;
-        let steps = after.steps - before.steps;
+        Coupled { sim: self }.contacts(t_end, x, true)?;
         let newton = after.newton_iterations - before.newton_iterations;
-        self.stats.steps += steps;
-        self.stats.iterations += newton;
-        self.stats.max_iterations = self.stats.max_iterations.max(newton);
-        self.stats.failed_steps += after.rejected_steps - before.rejected_steps;
-        let contact_iterations: usize = self.work.outputs.iter().map(|o| o.iterations).sum();
-        self.stats.contact_iterations += contact_iterations;
-        let q = self.stepper.q();
-        let a = self.stepper.a();
-        for k in 0..nw {
-            let iw = self.wheel_dof[k];
-            let contact = self.work.outputs[k];
-            let touching = contact.force > 0.0;
-            if self.in_contact[k] && !touching {
-                self.loss_events += 1;
-                self.wheel_loss_events[k] += 1;
-            }
-            self.in_contact[k] = touching;
-            self.forces[k] = contact.force;
-            let sample = &mut self.samples[k];
-            sample.wheel_displacement = q[iw];
-            sample.wheel_acceleration = a[iw];
-            sample.body_displacement = self.body_dof[k].map_or(q[iw], |ib| q[ib]);
-            sample.body_acceleration = self.body_dof[k].map_or(0.0, |ib| a[ib]);
-            sample.approach = self.work.delta[k];
-            sample.contact = ContactOutput {
-                iterations: contact_iterations,
-                ..contact
-            };
-        }
-        Ok(())
+        let contact_iterations = self.work.outputs.iter().map(|o| o.iterations).sum();
+        self.accept(
+            StateUpdate::Restart { t: t_end, x, v },
+            Accepted {
+                steps: after.steps - before.steps,
+                iterations: newton,
+                contact_iterations,
+                rejected: after.rejected_steps - before.rejected_steps,
+            },
+        )
     }
 }

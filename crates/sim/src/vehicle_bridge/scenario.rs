@@ -4,7 +4,7 @@ use beam::{ModalBasis, ModalDamping};
 use integrate::structural::StructuralMethod;
 
 use super::error::{check_non_negative, invalid};
-use super::{ContactGeometry, Irregularity, MAX_STEPS, VehicleBridgeError};
+use super::{ContactGeometry, Irregularity, MAX_STEPS, Radau5Spec, VehicleBridgeError};
 
 /// One wheel (with its sprung body) of the vehicle; positions at t = 0.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -46,6 +46,27 @@ pub enum ContactModel {
     Hertz,
     /// Half-space boundary elements on an `elements × elements` grid, NormCG tolerance `tol`.
     Bem { elements: usize, tol: f64 },
+}
+
+/// The time integrator of the coupled system, chosen with the scenario.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Integrator {
+    /// An implicit structural method of `integrate` with the coupling iteration of each step
+    /// (module documentation, "Time step"; [`CouplingSpec`]).
+    Structural(StructuralMethod),
+    /// Radau5 on the first-order coupled system, its simplified Newton iteration being the
+    /// coupling ([`radau`](super::radau)); needs compliant contact.
+    Radau5(Radau5Spec),
+}
+
+impl Integrator {
+    /// The scenario-file name (`newmark`, `hht`, …, `radau5`).
+    pub fn name(&self) -> &'static str {
+        match self {
+            Self::Structural(method) => method.name(),
+            Self::Radau5(_) => "radau5",
+        }
+    }
 }
 
 /// The coupling solver of each implicit step.
@@ -121,8 +142,8 @@ pub struct Scenario {
     pub geometry: ContactGeometry,
     /// Rail irregularity.
     pub irregularity: Irregularity,
-    /// Time integrator (implicit).
-    pub method: StructuralMethod,
+    /// Time integrator (an implicit structural method, or Radau5).
+    pub integrator: Integrator,
     /// Time step \[s\].
     pub dt: f64,
     /// Simulated time \[s\]; `None` = until the last wheel has left the span.
@@ -143,7 +164,7 @@ impl std::fmt::Debug for Scenario {
             .field("wheels", &self.wheels)
             .field("speed", &self.speed)
             .field("contact", &self.contact)
-            .field("method", &self.method)
+            .field("integrator", &self.integrator)
             .field("dt", &self.dt)
             .finish_non_exhaustive()
     }
@@ -167,12 +188,33 @@ pub(super) fn validate(scenario: &mut Scenario) -> Result<(), VehicleBridgeError
     if !(scenario.dt.is_finite() && scenario.dt > 0.0) {
         return Err(invalid("integrator.dt", scenario.dt, "must be positive"));
     }
-    if scenario.method.is_explicit() {
-        return Err(invalid(
-            "integrator.method",
-            f64::NAN,
-            "the coupled step needs an implicit method (newmark with beta > 0, hht, generalized_alpha, backward_euler)",
-        ));
+    match scenario.integrator {
+        Integrator::Structural(method) => {
+            if method.is_explicit() {
+                return Err(invalid(
+                    "integrator.method",
+                    f64::NAN,
+                    "the coupled step needs an implicit method (newmark with beta > 0, hht, generalized_alpha, backward_euler, radau5)",
+                ));
+            }
+        }
+        Integrator::Radau5(spec) => {
+            if scenario.contact == ContactModel::Rigid {
+                return Err(invalid(
+                    "contact.model",
+                    f64::NAN,
+                    "radau5 needs a compliant contact (hertz or bem): a rigid contact is an algebraic constraint, not an ODE",
+                ));
+            }
+            for (name, v) in [
+                ("integrator.rtol", spec.rtol),
+                ("integrator.atol", spec.atol),
+            ] {
+                if !(v.is_finite() && v > 0.0) {
+                    return Err(invalid(name, v, "must be positive and finite"));
+                }
+            }
+        }
     }
     if !(scenario.gravity.is_finite()) {
         return Err(invalid("gravity", scenario.gravity, "must be finite"));

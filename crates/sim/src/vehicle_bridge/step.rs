@@ -22,7 +22,7 @@ impl Simulation {
             self.advance(dt, 0)?;
         }
         if let Some(tr) = self.traction.as_mut() {
-            tr.update(dt, self.scenario.speed, &self.samples, &self.laws)?;
+            tr.update(dt, self.scenario.speed, &self.samples, &self.contacts)?;
         }
         Ok(())
     }
@@ -84,12 +84,11 @@ impl Simulation {
         };
         let m = self.scenario.bridge.n_modes();
         for j in 0..m {
-            if !a.push1(j, entry(j, j)) {
-                return Err(singular(j, "bridge-mode"));
-            }
+            a.push1(j, entry(j, j))
+                .map_err(|_| singular(j, "bridge-mode"))?;
         }
         for (k, &iw) in self.wheel_dof.iter().enumerate() {
-            let ok = match self.body_dof[k] {
+            let pushed = match self.body_dof[k] {
                 None => a.push1(iw, entry(iw, iw)),
                 Some(ib) => a.push2(
                     iw,
@@ -100,9 +99,7 @@ impl Simulation {
                     entry(ib, ib),
                 ),
             };
-            if !ok {
-                return Err(singular(iw, "wheel"));
-            }
+            pushed.map_err(|_| singular(iw, "wheel"))?;
         }
         self.a_coefficients = key;
         Ok(())

@@ -9,7 +9,7 @@
 //!   ([`TangentialSolver::transient_step`], CONTACT's T = 2) on the BEM grid with the wheel's
 //!   pressure, the previous step's tractions and δq = V Δt (bem contact only);
 //! * `fastsim`: Kalker's FASTSIM on the Hertz ellipse of the current normal force
-//!   (semi-axes a along, b across the track from [`HertzLaw::at_force`]);
+//!   (semi-axes a along, b across the track from [`HertzPoint::at_force`]);
 //! * `linear`: Kalker's linear theory F_x = −G c² C₁₁ ξ, c² = ab (references.md §C4.2), capped at
 //!   |F_x| ≤ μ F_n (the theory itself is uncapped; the cap is this model's choice).
 //!
@@ -38,7 +38,9 @@ use halfspace::{
     TangentialStrategy, creep_coefficients, fastsim, tangential_strategy,
 };
 
-use super::contact::{ContactGeometry, ContactLaw, HertzLaw};
+use halfspace::law::{ContactModel as LawModel, HertzPoint};
+
+use super::contact::{ContactGeometry, pressure_field};
 use super::{VehicleBridgeError, WheelSample};
 
 /// The tangential method of the traction computation (module documentation): halfspace's
@@ -100,7 +102,7 @@ pub struct TractionSummary {
 #[derive(Debug)]
 pub struct Traction {
     spec: TractionSpec,
-    hertz: HertzLaw,
+    hertz: HertzPoint,
     material: Material,
     radius: f64,
     solvers: Vec<Option<TangentialSolver>>,
@@ -161,12 +163,12 @@ impl TractionSpec {
 }
 
 impl Traction {
-    /// Sets up the traction of `laws.len()` wheels rolling at `speed` [m/s] (free rolling at
+    /// Sets up the traction of `contacts.len()` wheels rolling at `speed` [m/s] (free rolling at
     /// the start). `exact` needs the `bem` contact law (its grid).
     pub(super) fn new(
         spec: TractionSpec,
         geometry: &ContactGeometry,
-        laws: &[Box<dyn ContactLaw>],
+        contacts: &[LawModel],
         speed: f64,
     ) -> Result<Self, VehicleBridgeError> {
         spec.validate()?;
@@ -180,13 +182,13 @@ impl Traction {
                 "dissimilar wheel and rail materials (K != 0) need the coupled normal-tangential solve, which the traction model does not do",
             ));
         }
-        let hertz = HertzLaw::new(geometry)?;
-        let n = laws.len();
+        let hertz = geometry.hertz()?;
+        let n = contacts.len();
         let mut solvers = Vec::with_capacity(n);
         let (mut px, mut py) = (Vec::with_capacity(n), Vec::with_capacity(n));
-        for law in laws {
+        for contact in contacts {
             if spec.method == TractionMethod::Exact {
-                let Some((grid, _)) = law.pressure_field() else {
+                let Some((grid, _)) = pressure_field(contact) else {
                     return Err(bad(
                         "traction.method",
                         f64::NAN,
@@ -260,7 +262,7 @@ impl Traction {
         dt: f64,
         speed: f64,
         wheels: &[WheelSample],
-        laws: &[Box<dyn ContactLaw>],
+        contacts: &[LawModel],
     ) -> Result<(), VehicleBridgeError> {
         let mu = self.spec.mu;
         let r = self.radius;
@@ -315,8 +317,7 @@ impl Traction {
                     }
                     TractionMethod::Exact => {
                         let solver = self.solvers[k].as_mut().expect("built for exact");
-                        let pressure = laws[k]
-                            .pressure_field()
+                        let pressure = pressure_field(&contacts[k])
                             .map(|(_, p)| p)
                             .expect("exact needs the bem law (checked in new)");
                         let motion = StepMotion {

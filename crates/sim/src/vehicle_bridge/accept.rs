@@ -1,0 +1,96 @@
+//! Acceptance of a step, the same for both integrators: the generalized contact force of the
+//! accepted state, the hand-over of the state to the structural stepper that holds it, the
+//! statistics, the loss-of-contact events and the per-wheel samples.
+
+use halfspace::law::LawOutput;
+
+use super::{Simulation, VehicleBridgeError};
+
+/// How the accepted state reaches the structural stepper.
+pub(super) enum StateUpdate<'a> {
+    /// The structural method finishes its step of size `dt` from the converged state `work.x`.
+    Finish { dt: f64 },
+    /// Radau5: the stepper restarts at time `t` with displacements `x` and velocities `v`.
+    Restart { t: f64, x: &'a [f64], v: &'a [f64] },
+}
+
+/// The counts of an accepted step.
+pub(super) struct Accepted {
+    /// Integrator steps taken (1 for a structural step; Radau5's sub-steps).
+    pub(super) steps: usize,
+    /// Coupling iterations (Radau5: its Newton iterations).
+    pub(super) iterations: usize,
+    /// Contact-solver iterations.
+    pub(super) contact_iterations: usize,
+    /// Rejected sub-steps (Radau5's step control; a structural step's retries are counted
+    /// where they happen).
+    pub(super) rejected: usize,
+}
+
+impl Simulation {
+    /// Accepts the step whose contact state is in the work space (`outputs`, `modal_load`,
+    /// `delta`): the generalized contact force at t_{n+1} (modes +Σ_k I_k, wheel k −F_k) into
+    /// `contact_load` and the structure's load, the state update, the statistics, the
+    /// loss-of-contact events and the samples.
+    pub(super) fn accept(
+        &mut self,
+        update: StateUpdate<'_>,
+        counts: Accepted,
+    ) -> Result<(), VehicleBridgeError> {
+        let m = self.scenario.bridge.n_modes();
+        let nw = self.contacts.len();
+        let w = &self.work;
+        self.contact_load.fill(0.0);
+        for k in 0..nw {
+            for j in 0..m {
+                self.contact_load[j] += w.modal_load[k][j];
+            }
+            self.contact_load[self.wheel_dof[k]] = -w.outputs[k].force;
+        }
+        self.structure
+            .contact_load
+            .copy_from_slice(&self.contact_load);
+        match update {
+            StateUpdate::Finish { dt } => {
+                let x = std::mem::take(&mut self.work.x);
+                let finished = self.stepper.finish_step(&mut self.structure, dt, &x);
+                self.work.x = x;
+                finished?;
+            }
+            StateUpdate::Restart { t, x, v } => {
+                self.stepper.restart(&mut self.structure, t, x, v)?;
+            }
+        }
+        let stats = &mut self.stats;
+        stats.steps += counts.steps;
+        stats.iterations += counts.iterations;
+        stats.max_iterations = stats.max_iterations.max(counts.iterations);
+        stats.contact_iterations += counts.contact_iterations;
+        stats.failed_steps += counts.rejected;
+        stats.max_force_floor = stats.max_force_floor.max(self.work.force_floor);
+        let q = self.stepper.q();
+        let a = self.stepper.a();
+        for k in 0..nw {
+            let iw = self.wheel_dof[k];
+            let contact = self.work.outputs[k];
+            let touching = contact.force > 0.0;
+            if self.in_contact[k] && !touching {
+                self.loss_events += 1;
+                self.wheel_loss_events[k] += 1;
+            }
+            self.in_contact[k] = touching;
+            self.forces[k] = contact.force;
+            let sample = &mut self.samples[k];
+            sample.wheel_displacement = q[iw];
+            sample.wheel_acceleration = a[iw];
+            sample.body_displacement = self.body_dof[k].map_or(q[iw], |ib| q[ib]);
+            sample.body_acceleration = self.body_dof[k].map_or(0.0, |ib| a[ib]);
+            sample.approach = self.work.delta[k];
+            sample.contact = LawOutput {
+                iterations: counts.contact_iterations,
+                ..contact
+            };
+        }
+        Ok(())
+    }
+}
