@@ -230,6 +230,8 @@ struct Tally {
     run_over_limit: Vec<String>,
     run_errors: usize,
     run_error_samples: Vec<String>,
+    /// Run failures (not input errors: the scenario was accepted) whose message names no key.
+    run_errors_without_key: Vec<String>,
     run_non_finite: Vec<String>,
     runs_ok: usize,
     /// The ten longest runs: (wall time \[s\], label).
@@ -442,6 +444,9 @@ fn run_case(
         Ok(Ok(Err(e))) if e == TIME_LIMIT => tally.run_over_limit.push(format!("{label}\n{text}")),
         Ok(Ok(Err(e))) => {
             tally.run_errors += 1;
+            if !names_a_key(&e, &key_words(text)) {
+                tally.run_errors_without_key.push(format!("{label}: {e}"));
+            }
             if tally.run_error_samples.len() < 10 {
                 tally.run_error_samples.push(format!("{label}: {e}"));
             }
@@ -554,15 +559,20 @@ fn fuzz_scenario_runs() {
     {
         println!("---\n{m}");
     }
+    for m in &t.run_errors_without_key {
+        println!("  run error without a key: {m}");
+    }
     // The figures of issue #9 (an allocation abort would have ended this process).
     println!(
-        "FIGURES: {} inputs, {} run ({} refused by the work budget {work:e}); panics {}, aborts 0, hangs over {limit} s {}, messages without a key {}, non-finite outputs {}",
+        "FIGURES: {} inputs, {} run ({} refused by the work budget {work:e}); panics {}, aborts 0, hangs over {limit} s {}, messages without a key {} (and {} of the {} run failures), non-finite outputs {}",
         t.cases,
         t.accepted,
         t.over_budget,
         t.panics.len() + t.run_panics.len(),
         t.run_over_limit.len(),
         t.without_key.len(),
+        t.run_errors_without_key.len(),
+        t.run_errors,
         t.run_non_finite.len()
     );
     assert!(t.panics.is_empty() && t.without_key.is_empty());
