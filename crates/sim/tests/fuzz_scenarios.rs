@@ -310,7 +310,10 @@ fn campaign(n: usize, run: Option<(Duration, f64)>) -> Tally {
                         _ => None,
                     };
                     drop(read);
-                    let wall = run_case(&base, (limit, work), &label, &mutated, &mut tally);
+                    let mut words = key_words(&mutated);
+                    words.extend(key_words(text));
+                    let case = (label.as_str(), mutated.as_str(), words.as_slice());
+                    let wall = run_case(&base, (limit, work), case, &mut tally);
                     if let Some((kind, total)) = estimate {
                         let rate = tally.slowest_rate.entry(kind).or_insert((0.0, 0.0));
                         if wall > 1.0 && wall / total > rate.0 {
@@ -414,11 +417,11 @@ fn normal_contact(case: &config::contact::PreparedCase) -> RunResult {
 /// past the limit stops itself at its next step (a run that does not, e.g. one stuck inside
 /// one step, is abandoned after one more second and counted as over the limit too).
 /// Returns the wall time \[s\].
+/// `words`: the keys of the mutated file and of its seed (the words a message may name).
 fn run_case(
     base: &Path,
     (limit, work): (Duration, f64),
-    label: &str,
-    text: &str,
+    (label, text, words): (&str, &str, &[String]),
     tally: &mut Tally,
 ) -> f64 {
     let (tx, rx) = mpsc::channel();
@@ -444,7 +447,7 @@ fn run_case(
         Ok(Ok(Err(e))) if e == TIME_LIMIT => tally.run_over_limit.push(format!("{label}\n{text}")),
         Ok(Ok(Err(e))) => {
             tally.run_errors += 1;
-            if !names_a_key(&e, &key_words(text)) {
+            if !names_a_key(&e, words) {
                 tally.run_errors_without_key.push(format!("{label}: {e}"));
             }
             if tally.run_error_samples.len() < 10 {
