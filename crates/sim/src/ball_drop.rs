@@ -375,11 +375,11 @@ impl BallDrop {
                 ..
             } => {
                 positive("[integrator] rtol", rtol)?;
-                if !(atol.is_finite() && atol >= 0.0) {
+                if !(atol.is_finite() && (atol > 0.0 || !self.integrator.is_adaptive())) {
                     return Err(invalid(
                         "[integrator] atol",
                         atol,
-                        "must be finite and >= 0",
+                        "must be finite and > 0 (the dissipated energy starts at 0: the step control needs an absolute error scale)",
                     ));
                 }
                 positive("[integrator] dt", dt)?;
