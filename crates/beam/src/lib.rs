@@ -54,8 +54,8 @@ pub use fe::{
 pub use loads::DistributedLoadProjector;
 pub use modal::{Derivative, ModalBasis};
 pub use moving::{
-    Axle, ModalIntegrator, MovingLoadResponse, MovingLoadSettings, MovingLoads,
-    simulate_moving_loads,
+    Axle, ModalIntegrator, MovingLoadResponse, MovingLoadSettings, MovingLoads, StepProgress,
+    simulate_moving_loads, simulate_moving_loads_observed,
 };
 pub use quadrature::{Quadrature, QuadratureRule};
 pub use sdof::PiecewiseLinearSdof;

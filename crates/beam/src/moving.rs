@@ -12,6 +12,8 @@
 //! The run lasts until the last axle leaves the span plus a free-vibration time. Loads and
 //! deflections are positive in the same direction.
 
+use std::ops::ControlFlow;
+
 use faer::{Mat, MatMut, MatRef};
 use integrate::structural::{StructuralMethod, StructuralStepper, StructuralSystem};
 
@@ -135,6 +137,21 @@ pub struct MovingLoadResponse {
     pub quasi_static_deflection: Vec<f64>,
     /// Time at which the last axle left the span \[s\].
     pub exit_time: f64,
+    /// `false` when the observer of [`simulate_moving_loads_observed`] stopped the run early
+    /// (the histories then end at the last recorded step).
+    pub completed: bool,
+}
+
+/// Where a moving-load run is: given to the observer of [`simulate_moving_loads_observed`]
+/// after every step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepProgress {
+    /// Steps taken.
+    pub step: usize,
+    /// Steps of the whole run.
+    pub steps: usize,
+    /// Time reached \[s\].
+    pub t: f64,
 }
 
 impl MovingLoadResponse {
@@ -421,6 +438,21 @@ pub fn simulate_moving_loads<B: ModalBasis + ?Sized>(
     settings: &MovingLoadSettings,
     points: &[f64],
 ) -> Result<MovingLoadResponse, BeamError> {
+    let mut run_to_end = |_: StepProgress| ControlFlow::Continue(());
+    simulate_moving_loads_observed(basis, damping, loads, settings, points, &mut run_to_end)
+}
+
+/// [`simulate_moving_loads`] with an `observer` called after every step short of the last;
+/// `ControlFlow::Break` stops the run there: the step is recorded (whatever `output_every`)
+/// and the response is returned with `completed = false` (an interrupt, a wall-clock budget).
+pub fn simulate_moving_loads_observed<B: ModalBasis + ?Sized>(
+    basis: &B,
+    damping: &ModalDamping,
+    loads: &MovingLoads,
+    settings: &MovingLoadSettings,
+    points: &[f64],
+    observer: &mut dyn FnMut(StepProgress) -> ControlFlow<()>,
+) -> Result<MovingLoadResponse, BeamError> {
     let dt = positive("dt", settings.dt)?;
     let free = non_negative("free_vibration_time", settings.free_vibration_time)?;
     if settings.output_every == 0 {
@@ -485,6 +517,7 @@ pub fn simulate_moving_loads<B: ModalBasis + ?Sized>(
         bending_moment: Vec::with_capacity(n_samples * np),
         quasi_static_deflection: Vec::with_capacity(n_samples * np),
         exit_time,
+        completed: true,
     };
     modal_forces_at(basis, loads, 0.0, &mut ws)?;
     std::mem::swap(&mut ws.f_now, &mut ws.f_next);
@@ -508,8 +541,13 @@ pub fn simulate_moving_loads<B: ModalBasis + ?Sized>(
                     (*q, *v) = stepper.step(*q, *v, *f0, *f1);
                 }
                 std::mem::swap(&mut ws.f_now, &mut ws.f_next);
-                if step % every == 0 || step == n_steps {
+                let stop = stop_requested(observer, step, n_steps, t);
+                if step % every == 0 || step == n_steps || stop {
                     record(omegas, &ws, &op, t, &mut out);
+                }
+                if stop {
+                    out.completed = false;
+                    break;
                 }
             }
         }
@@ -520,17 +558,32 @@ pub fn simulate_moving_loads<B: ModalBasis + ?Sized>(
             for step in 1..=n_steps {
                 let t = step as f64 * dt;
                 stepper.step(&mut system, dt)?;
-                if step % every == 0 || step == n_steps {
+                let stop = stop_requested(observer, step, n_steps, t);
+                if step % every == 0 || step == n_steps || stop {
                     ws.q.copy_from_slice(stepper.q());
                     ws.v.copy_from_slice(stepper.v());
                     modal_forces_at(basis, loads, t, &mut ws)?;
                     std::mem::swap(&mut ws.f_now, &mut ws.f_next);
                     record(omegas, &ws, &op, t, &mut out);
                 }
+                if stop {
+                    out.completed = false;
+                    break;
+                }
             }
         }
     }
     Ok(out)
+}
+
+/// Ask the observer after step `step` (never after the last one).
+fn stop_requested(
+    observer: &mut dyn FnMut(StepProgress) -> ControlFlow<()>,
+    step: usize,
+    steps: usize,
+    t: f64,
+) -> bool {
+    step < steps && observer(StepProgress { step, steps, t }).is_break()
 }
 
 /// Refuse a step above the stability limit of a conditionally stable method

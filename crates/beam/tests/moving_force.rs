@@ -351,3 +351,70 @@ fn resonant_train_cancellation() {
         resonant / d_st
     );
 }
+
+/// An observer that stops the run after step 137 (of a run recorded every 10th step): the
+/// response ends at t = 137 Δt with `completed = false`, the stop step is recorded although
+/// 137 is not a multiple of 10, and every recorded sample equals the uninterrupted run's
+/// sample at the same time (stopping changes no number), for the exact modal step and for
+/// Newmark.
+#[test]
+fn observer_stops_the_run_after_a_step() {
+    use std::ops::ControlFlow;
+    let beam = fryba();
+    let basis = AnalyticBeam::new(Support::SimplySupported, beam, 8).unwrap();
+    let loads = MovingLoads::single(FORCE, 30.0).unwrap();
+    for integrator in [
+        beam::ModalIntegrator::ExactPiecewiseLinear,
+        beam::ModalIntegrator::Structural(integrate::StructuralMethod::average_acceleration()),
+    ] {
+        let settings = MovingLoadSettings {
+            output_every: 10,
+            integrator,
+            ..MovingLoadSettings::new(1e-3, 0.5)
+        };
+        let full = simulate_moving_loads(
+            &basis,
+            &ModalDamping::Undamped,
+            &loads,
+            &settings,
+            &[12.5, 5.0],
+        )
+        .unwrap();
+        assert!(full.completed);
+        let mut calls = 0;
+        let part = beam::simulate_moving_loads_observed(
+            &basis,
+            &ModalDamping::Undamped,
+            &loads,
+            &settings,
+            &[12.5, 5.0],
+            &mut |p| {
+                calls += 1;
+                assert_eq!(p.step, calls);
+                if p.step == 137 {
+                    ControlFlow::Break(())
+                } else {
+                    ControlFlow::Continue(())
+                }
+            },
+        )
+        .unwrap();
+        assert!(!part.completed);
+        assert_eq!(calls, 137);
+        // Samples at steps 0, 10, …, 130 and the stop step 137.
+        assert_eq!(part.times.len(), 15);
+        let t_end = *part.times.last().unwrap();
+        assert!((t_end - 0.137).abs() < 1e-12, "{t_end}");
+        for (i, t) in part.times[..14].iter().enumerate() {
+            assert_eq!(*t, full.times[i]);
+            for p in 0..2 {
+                assert_eq!(part.deflection[2 * i + p], full.deflection[2 * i + p]);
+                assert_eq!(
+                    part.bending_moment[2 * i + p],
+                    full.bending_moment[2 * i + p]
+                );
+            }
+        }
+        assert!(part.deflection[28].abs() > 0.0);
+    }
+}

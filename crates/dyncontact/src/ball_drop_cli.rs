@@ -2,119 +2,51 @@
 //! (Hertz or boundary-element contact, any integrator), and `dyncontact bench integrators`.
 //! The schema is documented in docs/ball_drop.md. SI units; unknown keys are errors.
 
+use std::ops::ControlFlow;
 use std::path::Path;
 use std::time::Instant;
 
 use anyhow::{Result, anyhow};
-use serde_json::{Value, json};
 use sim::ball_drop::{
-    BallDrop, BallDropError, BallDropResult, ForceModel, HertzImpact, Integrator,
-    IntegratorSettings, METHOD_NAMES,
+    BallDrop, BallDropError, BallDropResult, HertzImpact, Integrator, IntegratorSettings,
+    METHOD_NAMES, Progress,
 };
 use sim::config::ball_drop::BallDropConfig;
 
+use crate::ball_drop_summary::summary;
 use crate::errors::bad_input;
+use crate::interrupt::{self, Interrupted};
 use crate::output::{self, RunOutput};
 use crate::plot;
 use crate::plot::{Panel, Series};
 
-/// The JSON summary.
-pub fn summary(p: &BallDropConfig, r: &BallDropResult) -> Value {
-    let sc = &p.scenario;
-    let st = &r.stats;
-    let (rtol, atol, dt) = p.settings;
-    let integrator = match sc.integrator {
-        Integrator::Ode { .. } if sc.integrator.is_adaptive() => {
-            json!({"method": st.method, "rtol": rtol, "atol": atol})
-        }
-        Integrator::Ode { .. } => json!({"method": st.method, "dt": dt}),
-        Integrator::Structural { dt, dt_flight, .. } => {
-            json!({"method": st.method, "dt": dt, "dt_flight": dt_flight})
-        }
-    };
-    let mut integrator = integrator;
-    let obj = integrator.as_object_mut().expect("an object");
-    for (k, v) in [
-        ("steps", st.steps),
-        ("rejected_steps", st.rejected_steps),
-        ("f_evals", st.f_evals),
-        ("jacobian_evals", st.jacobian_evals),
-        ("lu_decompositions", st.lu_decompositions),
-        ("newton_iterations", st.newton_iterations),
-        ("guard_retries", st.guard_retries),
-        ("contact_solves", st.contact_solves),
-    ] {
-        obj.insert(k.to_string(), json!(v));
-    }
-    let impacts: Vec<Value> = r
-        .impacts
-        .iter()
-        .map(|i| {
-            json!({
-                "time": i.time,
-                "impact_velocity": i.impact_velocity,
-                "max_approach": i.max_approach,
-                "peak_force": i.peak_force,
-                "contact_duration": i.contact_duration,
-                "rebound_velocity": i.rebound_velocity,
-                "restitution": i.restitution,
-            })
-        })
-        .collect();
-    let model = match sc.model {
-        ForceModel::Hertz => json!({"model": "hertz", "damping": sc.damping}),
-        ForceModel::Bem { elements, tol } => {
-            json!({"model": "bem", "elements": elements, "tol": tol, "damping": sc.damping})
-        }
-    };
-    json!({
-        "kind": "ball_drop",
-        "mass": sc.mass,
-        "hertz_constant": r.hertz_constant,
-        "contact": model,
-        "closed_form": {
-            "impact_speed": r.reference.impact_speed,
-            "max_approach": r.reference.max_approach,
-            "peak_force": r.reference.peak_force,
-            "contact_duration": r.reference.contact_duration,
-        },
-        "impacts": impacts,
-        "restitution": r.restitution,
-        "initial_energy": r.initial_energy,
-        "energy_drift": r.energy_drift,
-        "energy_drift_max": r.energy_drift_max,
-        "accuracy": {
-            "contact_time": r.plan.contact_time,
-            "contact_step": r.plan.contact_step,
-            "step_refined": r.plan.refined,
-            "step_ratio": r.step_ratio,
-            "estimated_steps": r.plan.estimated_steps,
-            "energy_drift_limit": sim::ball_drop::plan::ENERGY_DRIFT_LIMIT,
-            "step_ratio_limit": sim::ball_drop::plan::STEP_RATIO_LIMIT,
-            "flags": r.accuracy_flags,
-        },
-        "integrator": integrator,
-        "final_time": r.final_time,
-        "samples": r.samples.len(),
-        "wall_time_s": r.wall_time_s,
-    })
-}
-
 /// The files a ball-drop run writes (one run's output set).
 const OUTPUT_SET: &[&str] = &["timeseries.csv", "summary.json", "ball_drop.png"];
 
-/// `dyncontact run FILE` for `kind = "ball_drop"`.
+/// `dyncontact run FILE` for `kind = "ball_drop"`. Ctrl-C stops the run at its next step;
+/// what is complete is written with `"completed": false` (module [`crate::interrupt`]).
 pub fn run(prepared: BallDropConfig, out: &Path, json: bool) -> Result<()> {
     let run_out = RunOutput::create(out, OUTPUT_SET)?;
-    let result = prepared.scenario.simulate(true).map_err(|e| {
-        // A parameter or material the model rejects is the input's fault (exit 2).
-        let input = matches!(
-            e,
-            BallDropError::InvalidParameter { .. } | BallDropError::Material { .. }
-        );
-        let e = anyhow!("ball drop: {e}");
-        if input { bad_input(e) } else { e }
-    })?;
+    interrupt::stop_at_next_step();
+    let mut stop_on_interrupt = |_: Progress| {
+        if interrupt::requested() {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
+    };
+    let result = prepared
+        .scenario
+        .simulate_observed(true, &mut stop_on_interrupt)
+        .map_err(|e| {
+            // A parameter or material the model rejects is the input's fault (exit 2).
+            let input = matches!(
+                e,
+                BallDropError::InvalidParameter { .. } | BallDropError::Material { .. }
+            );
+            let e = anyhow!("ball drop: {e}");
+            if input { bad_input(e) } else { e }
+        })?;
     let summary = summary(&prepared, &result);
     output::write_csv(
         &run_out.path("timeseries.csv"),
@@ -128,16 +60,30 @@ pub fn run(prepared: BallDropConfig, out: &Path, json: bool) -> Result<()> {
     if prepared.plot {
         write_plot(&run_out.path("ball_drop.png"), &result)?;
     }
+    if !result.completed {
+        run_out.mark_partial("timeseries.csv")?;
+    }
     run_out.commit()?;
     if json {
         println!("{}", output::json_text(&summary)?);
     } else {
         print_summary(&prepared, &result);
         println!(
-            "wrote {}/timeseries.csv, summary.json{}",
+            "wrote {}/{}, summary.json{}",
             out.display(),
+            if result.completed {
+                "timeseries.csv"
+            } else {
+                "timeseries.partial.csv"
+            },
             if prepared.plot { ", ball_drop.png" } else { "" }
         );
+    }
+    if !result.completed {
+        return Err(Interrupted {
+            time_reached: result.final_time,
+        }
+        .into());
     }
     Ok(())
 }

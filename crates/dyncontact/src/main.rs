@@ -6,6 +6,7 @@
 //! Exit codes (see [`errors`]): 0 success, 1 the run failed or was interrupted, 2 bad input.
 
 mod ball_drop_cli;
+mod ball_drop_summary;
 mod bench;
 mod bench_tangential;
 mod contact_case;
@@ -59,6 +60,10 @@ enum Command {
         /// generalized_alpha).
         #[arg(long)]
         integrator: Option<String>,
+        /// Largest estimated work of the run in floating-point operations (default 1e16, about 1e9 per second;
+        /// docs/scenarios.md): runs estimated above it are refused before they start.
+        #[arg(long)]
+        max_work: Option<f64>,
     },
     /// Solve a quasi-static normal contact case (TOML).
     Contact {
@@ -158,7 +163,8 @@ fn run_cli() -> Result<()> {
             out,
             json,
             integrator,
-        } => run_scenario(file.as_deref(), &out, json, integrator.as_deref()),
+            max_work,
+        } => run_scenario(file.as_deref(), &out, json, integrator.as_deref(), max_work),
         Command::Contact { file, json, out } => {
             let case = contact_case::parse(&read(&file)?, base_dir(&file)).map_err(bad_input)?;
             run_contact(case, json, out.as_deref())
@@ -207,6 +213,7 @@ fn run_scenario(
     out: &Path,
     json: bool,
     integrator: Option<&str>,
+    max_work: Option<f64>,
 ) -> Result<()> {
     let (text, base) = match file {
         Some(f) => (read(f)?, base_dir(f).to_path_buf()),
@@ -217,6 +224,7 @@ fn run_scenario(
     };
     let options = sim::config::LoadOptions {
         integrator: integrator.map(str::to_string),
+        max_work,
     };
     match sim::config::load(&text, &base, &options).map_err(|e| bad_input(e.into()))? {
         ScenarioConfig::BallDrop(config) => ball_drop_cli::run(*config, out, json),

@@ -1,21 +1,31 @@
 //! `dyncontact run FILE` with `kind = "moving_load"`: a force or a train of axle forces crossing
 //! the bridge at constant speed (modal superposition; Frýba's problem, references.md §D1.1).
 
+use std::ops::ControlFlow;
 use std::path::Path;
 use std::time::Instant;
 
 use anyhow::{Result, anyhow};
-use beam::{MovingLoads, simulate_moving_loads};
+use beam::{MovingLoads, StepProgress, simulate_moving_loads_observed};
 use serde::Serialize;
 use sim::config::bridge::Bridge;
 use sim::config::moving_load::MovingLoadConfig;
 
 use crate::errors::bad_input;
+use crate::interrupt::{self, Interrupted};
 use crate::output::{self, RunOutput};
 use crate::plot;
 
 #[derive(Debug, Serialize)]
 pub struct MovingLoadSummary {
+    /// False when the run stopped early (interrupted): the outputs then end at `time_reached`
+    /// and timeseries.csv is named timeseries.partial.csv.
+    pub completed: bool,
+    /// Simulated time reached \[s\].
+    pub time_reached: f64,
+    /// Why the run stopped early (absent when `completed`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stopped_by: Option<String>,
     pub bridge: String,
     pub speed: f64,
     pub axles: usize,
@@ -39,7 +49,8 @@ pub struct MovingLoadSummary {
 /// The files a moving-load run writes (one run's output set).
 const OUTPUT_SET: &[&str] = &["timeseries.csv", "summary.json", "midspan_deflection.png"];
 
-/// Run a validated moving-load scenario; writes outputs into `out`.
+/// Run a validated moving-load scenario; writes outputs into `out`. Ctrl-C stops the run at
+/// its next step; what is complete is written with `"completed": false`.
 pub fn run(config: MovingLoadConfig, out: &Path, json: bool) -> Result<()> {
     let MovingLoadConfig {
         bridge,
@@ -51,12 +62,21 @@ pub fn run(config: MovingLoadConfig, out: &Path, json: bool) -> Result<()> {
     let dt = settings.dt;
     let run_out = RunOutput::create(out, OUTPUT_SET)?;
     let start = Instant::now();
-    let response = simulate_moving_loads(
+    interrupt::stop_at_next_step();
+    let mut stop_on_interrupt = |_: StepProgress| {
+        if interrupt::requested() {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
+    };
+    let response = simulate_moving_loads_observed(
         bridge.basis.as_ref(),
         &bridge.damping,
         &loads,
         &settings,
         &points,
+        &mut stop_on_interrupt,
     )
     .map_err(|e| {
         // Parameters, counts and positions the solver rejects are the input's fault (exit 2).
@@ -74,15 +94,29 @@ pub fn run(config: MovingLoadConfig, out: &Path, json: bool) -> Result<()> {
     write_timeseries(&run_out, &loads, &response)?;
     plot_outputs(&run_out, &loads, &response, &summary)?;
     output::write_json(&run_out.path("summary.json"), &summary)?;
+    if !summary.completed {
+        run_out.mark_partial("timeseries.csv")?;
+    }
     run_out.commit()?;
     if json {
         println!("{}", output::json_text(&summary)?);
     } else {
         print_summary(&summary);
         println!(
-            "wrote {}/timeseries.csv, summary.json, midspan_deflection.png",
-            out.display()
+            "wrote {}/{}, summary.json, midspan_deflection.png",
+            out.display(),
+            if summary.completed {
+                "timeseries.csv"
+            } else {
+                "timeseries.partial.csv"
+            }
         );
+    }
+    if !summary.completed {
+        return Err(Interrupted {
+            time_reached: summary.time_reached,
+        }
+        .into());
     }
     Ok(())
 }
@@ -109,6 +143,9 @@ fn summarise(
     };
     let end = r.times.last().copied().unwrap_or(0.0);
     Ok(MovingLoadSummary {
+        completed: r.completed,
+        time_reached: end,
+        stopped_by: (!r.completed).then(|| "interrupt (SIGINT or SIGTERM)".to_string()),
         bridge: bridge.description.clone(),
         speed: loads.speed(),
         axles: loads.axles().len(),

@@ -324,3 +324,108 @@ fn sigint_stops_the_run_and_marks_the_outputs_partial() {
         "{last_t} vs {reached}"
     );
 }
+
+/// Start `file` with `--json`, send SIGINT once the run is stepping (its private directory
+/// has existed for `settle`), and check the interrupted run's outputs: exit code 1, a summary
+/// (stdout and summary.json) with `"completed": false` and the time reached, the time series
+/// only as `timeseries.partial.csv` (well-formed, ending at the time reached). Returns the
+/// summary.
+fn interrupt_run(
+    file: &str,
+    out: &Path,
+    settle: Duration,
+    time_column: usize,
+) -> serde_json::Value {
+    std::fs::create_dir_all(out).unwrap();
+    std::fs::write(out.join("timeseries.csv"), "t\n1\n").unwrap();
+    let child = Command::new(env!("CARGO_BIN_EXE_dyncontact"))
+        .args(["run", file, "--out", out.to_str().unwrap(), "--json"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let t0 = Instant::now();
+    while !std::fs::read_dir(out).unwrap().any(|e| {
+        e.unwrap()
+            .file_name()
+            .to_string_lossy()
+            .starts_with(".dyncontact-run-")
+    }) {
+        assert!(
+            t0.elapsed() < Duration::from_secs(60),
+            "the run did not start"
+        );
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    std::thread::sleep(settle);
+    // SAFETY: sends SIGINT to the child we spawned.
+    assert_eq!(unsafe { libc::kill(child.id() as i32, libc::SIGINT) }, 0);
+    let t1 = Instant::now();
+    let o = child.wait_with_output().unwrap();
+    assert!(
+        t1.elapsed() < Duration::from_secs(20),
+        "slow stop: {:?}",
+        t1.elapsed()
+    );
+    assert_eq!(code(&o), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("interrupted"), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["completed"], false, "{v}");
+    assert!(v["stopped_by"].as_str().unwrap().contains("interrupt"));
+    let file: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(file["completed"], false);
+    assert_eq!(file["time_reached"], v["time_reached"]);
+    assert!(
+        !out.join("timeseries.csv").exists(),
+        "a complete-looking CSV is left"
+    );
+    assert!(check_csv(&out.join("timeseries.partial.csv")) > 1);
+    let reached = v["time_reached"].as_f64().unwrap();
+    let text = std::fs::read_to_string(out.join("timeseries.partial.csv")).unwrap();
+    let last_t: f64 = text
+        .lines()
+        .last()
+        .unwrap()
+        .split(',')
+        .nth(time_column)
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(
+        reached > 0.0 && (last_t - reached).abs() <= 1e-9 * reached.max(1.0),
+        "{last_t} vs {reached}"
+    );
+    v
+}
+
+/// SIGINT stops a ball drop (RK4, 1.1e7 fixed steps: minutes) at its next step.
+#[test]
+fn sigint_stops_a_ball_drop() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(example("ball_drop_steel.toml"))
+        .unwrap()
+        .replace("duration = 1.0", "duration = 10.0")
+        .replace("method = \"radau5\"", "method = \"rk4\"\ndt = 1e-6")
+        .replace("rtol = 1e-8\n", "")
+        .replace("atol = 1e-12\n", "");
+    let file = write(dir.path(), "long_drop.toml", &text);
+    let v = interrupt_run(&file, &dir.path().join("out"), Duration::from_secs(1), 0);
+    assert!(v["time_reached"].as_f64().unwrap() < 10.0);
+    assert_eq!(v["final_time"], v["time_reached"]);
+}
+
+/// SIGINT stops a moving load (a force crawling at 3 mm/s: 8.3e7 exact modal steps) at its
+/// next step.
+#[test]
+fn sigint_stops_a_moving_load() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(example("moving_load_fryba.toml"))
+        .unwrap()
+        .replace("speed = 27.78", "speed = 0.003")
+        .replace("method = \"newmark\"", "method = \"exact\"");
+    let file = write(dir.path(), "crawl.toml", &text);
+    let v = interrupt_run(&file, &dir.path().join("out"), Duration::from_secs(1), 0);
+    let reached = v["time_reached"].as_f64().unwrap();
+    assert!(reached < 25.0 / 0.003, "{reached}");
+}

@@ -85,7 +85,7 @@ mod radau5;
 pub use adams::AdamsPece;
 pub use backward_euler::BackwardEuler;
 pub use bdf::Bdf;
-pub use events::{Direction, Event, EventRecord, Output, Solution, solve};
+pub use events::{Direction, Event, EventRecord, Output, Solution, solve, solve_observed};
 pub use explicit::{Dopri5, ExplicitEuler, Rk4};
 pub use linalg::finite_difference_jacobian;
 pub use radau5::Radau5;

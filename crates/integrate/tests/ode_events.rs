@@ -418,3 +418,53 @@ fn bouncing_ball_with_restitution_via_restarts() {
         assert!(y[1] > 0.0);
     }
 }
+
+/// An observer that breaks once t ≥ 0.305 stops the free fall at the first accepted step past
+/// it (fixed step 0.01 s: t = 0.31 s up to round-off), with the state of the exact parabola
+/// z = h − g t²/2, v = −g t (which RK4 integrates exactly) and `stopped` set; the observer is
+/// called once per step.
+#[test]
+fn observer_stops_the_run_at_the_next_step() {
+    use std::ops::ControlFlow;
+    let h = 1.0;
+    let mut stepper = Method::Rk4.build(2, &OdeOptions::fixed(0.01)).unwrap();
+    let mut calls = 0;
+    for output in [Output::Final, Output::Steps] {
+        calls = 0;
+        let sol = integrate::ode::solve_observed(
+            stepper.as_mut(),
+            &mut FreeFall,
+            (0.0, &[h, 0.0]),
+            10.0,
+            &mut [],
+            &output,
+            &mut |t, _y| {
+                calls += 1;
+                if t >= 0.305 {
+                    ControlFlow::Break(())
+                } else {
+                    ControlFlow::Continue(())
+                }
+            },
+        )
+        .unwrap();
+        assert!(sol.stopped && !sol.terminated);
+        let (t, y) = (*sol.t.last().unwrap(), sol.y.last().unwrap());
+        assert!((t - 0.31).abs() < 1e-12, "{t}");
+        assert!((y[0] - (h - 0.5 * G * t * t)).abs() < 1e-12, "{y:?}");
+        assert!((y[1] + G * t).abs() < 1e-12, "{y:?}");
+        assert_eq!(sol.stats.steps, 31);
+    }
+    assert_eq!(calls, 31);
+    // Without a break the run reaches t_end and is not marked stopped.
+    let sol = solve(
+        stepper.as_mut(),
+        &mut FreeFall,
+        (0.0, &[h, 0.0]),
+        0.1,
+        &mut [],
+        &Output::Final,
+    )
+    .unwrap();
+    assert!(!sol.stopped && (sol.t[0] - 0.1).abs() < 1e-12);
+}

@@ -45,6 +45,7 @@ pub mod plan;
 mod result;
 mod second_order;
 
+use std::ops::ControlFlow;
 use std::time::Instant;
 
 pub use force::{ContactForce, ElasticForce, hertz_constant};
@@ -52,7 +53,7 @@ use halfspace::{Body, ContactError, Material};
 pub use hertz_impact::{CONTACT_TIME_FACTOR, HertzImpact};
 use integrate::{IntegrateError, Method, StructuralMethod};
 pub use plan::RunPlan;
-pub use result::{BallDropResult, Impact, RunStats, Sample};
+pub use result::{BallDropResult, Impact, Progress, RunStats, Sample};
 use thiserror::Error;
 
 /// Failure of a ball-drop simulation. `key` names the scenario-file key at fault.
@@ -374,11 +375,11 @@ impl BallDrop {
                 ..
             } => {
                 positive("[integrator] rtol", rtol)?;
-                if !(atol.is_finite() && atol >= 0.0) {
+                if !(atol.is_finite() && (atol > 0.0 || !self.integrator.is_adaptive())) {
                     return Err(invalid(
                         "[integrator] atol",
                         atol,
-                        "must be finite and >= 0",
+                        "must be finite and > 0 (the dissipated energy starts at 0: the step control needs an absolute error scale)",
                     ));
                 }
                 positive("[integrator] dt", dt)?;
@@ -459,6 +460,17 @@ impl BallDrop {
     /// Run the simulation. With `record_series = false` only the events, the final state and
     /// the statistics are kept (benchmarks).
     pub fn simulate(&self, record_series: bool) -> Result<BallDropResult, BallDropError> {
+        self.simulate_observed(record_series, &mut |_| ControlFlow::Continue(()))
+    }
+
+    /// [`simulate`](Self::simulate) with an `observer` called after every accepted step short
+    /// of the end; `ControlFlow::Break` stops the run there and returns what is complete with
+    /// `completed = false` (an interrupt, a wall-clock budget).
+    pub fn simulate_observed(
+        &self,
+        record_series: bool,
+        observer: &mut dyn FnMut(Progress) -> ControlFlow<()>,
+    ) -> Result<BallDropResult, BallDropError> {
         let material = self.validate()?;
         let k = hertz_constant(&self.shape, &material)?;
         let reference = HertzImpact::new(self.mass, k, self.impact_speed(), self.gravity);
@@ -489,10 +501,11 @@ impl BallDrop {
         let start = Instant::now();
         let mut run = match planned.integrator {
             Integrator::Ode { .. } => {
-                first_order::run(&planned, model, &reference, interval, record_series)?
+                let recording = (interval, record_series, run_plan.step_budget());
+                first_order::run(&planned, model, &reference, recording, observer)?
             }
             Integrator::Structural { .. } => {
-                second_order::run(&planned, model, interval, record_series)?
+                second_order::run(&planned, model, (interval, record_series), observer)?
             }
         };
         let wall_time_s = start.elapsed().as_secs_f64();
@@ -550,6 +563,7 @@ impl BallDrop {
             reference,
             hertz_constant: k,
             final_time: run.final_time,
+            completed: run.completed,
             plan: run_plan,
             step_ratio,
             accuracy_flags,
@@ -603,5 +617,7 @@ struct RunOutput {
     impacts: Vec<Impact>,
     final_energy: f64,
     final_time: f64,
+    /// `false` when the observer stopped the run.
+    completed: bool,
     stats: RunStats,
 }

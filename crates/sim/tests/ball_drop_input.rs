@@ -194,3 +194,22 @@ fn unknown_methods_and_misplaced_settings_are_rejected() {
     };
     assert!(Integrator::from_name("verlet", &guard).is_err());
 }
+
+/// `integrator.atol = 0` with an adaptive method is refused naming the key (the state starts
+/// with zero components, so the step control would have no error scale: before, Radau5
+/// failed at t = 0 with "singular iteration matrix").
+#[test]
+fn zero_atol_is_refused_for_adaptive_methods() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
+    let text = std::fs::read_to_string(path.join("ball_drop_steel.toml"))
+        .unwrap()
+        .replace("atol = 1e-12", "atol = 0.0");
+    let message = match sim::config::load(&text, &path, &Default::default()) {
+        Err(e) => e.to_string(),
+        Ok(_) => panic!("atol = 0 accepted"),
+    };
+    assert!(
+        message.contains("integrator.atol") || message.contains("[integrator] atol"),
+        "{message}"
+    );
+}

@@ -9,12 +9,16 @@
 //!   no panic, every error message names a key of the file (or the section it lacks), and no
 //!   single allocation above 1 GiB while reading (sizes are refused before allocating).
 //! * `fuzz_scenario_runs` (`#[ignore]`, long): also RUNS every accepted scenario with a time
-//!   limit and reports panics, runs over the limit, errors and non-finite outputs. Run it
-//!   with `DYNCONTACT_FUZZ_CASES=5000 cargo test --release -p sim --test fuzz_scenarios --
-//!   --ignored --nocapture` (`DYNCONTACT_FUZZ_LIMIT_S` sets the limit, default 30 s).
+//!   limit and reports panics, runs over the limit, errors and non-finite outputs, ending with
+//!   a `FIGURES:` line (the counts of issue #9). Run it with `DYNCONTACT_FUZZ_CASES=5000 cargo
+//!   test --release -p sim --test fuzz_scenarios -- --ignored --nocapture`
+//!   (`DYNCONTACT_FUZZ_LIMIT_S` sets the limit, default 30 s; `DYNCONTACT_FUZZ_MAX_WORK` the
+//!   work budget, default [`FUZZ_MAX_WORK`]; `DYNCONTACT_FUZZ_SHOW=N` prints case N). A run past the limit is stopped at its next step
+//!   through the simulations' observers and counted as a hang.
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
+use std::ops::ControlFlow;
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::{Path, PathBuf};
 use std::sync::mpsc;
@@ -199,9 +203,14 @@ enum Read {
     Refused(ConfigError),
 }
 
-fn read(text: &str, base: &Path) -> Read {
+/// Read a case; `max_work` is the work budget of [`LoadOptions::max_work`].
+fn read(text: &str, base: &Path, max_work: Option<f64>) -> Read {
+    let options = LoadOptions {
+        max_work,
+        ..LoadOptions::default()
+    };
     let result = if text.contains("kind") {
-        config::load(text, base, &LoadOptions::default()).map(|c| Read::Accepted(Box::new(c)))
+        config::load(text, base, &options).map(|c| Read::Accepted(Box::new(c)))
     } else {
         config::contact::parse(text, base).map(|c| Read::Contact(Box::new(c)))
     };
@@ -220,12 +229,23 @@ struct Tally {
     run_panics: Vec<String>,
     run_over_limit: Vec<String>,
     run_errors: usize,
+    run_error_samples: Vec<String>,
+    /// Run failures (not input errors: the scenario was accepted) whose message names no key.
+    run_errors_without_key: Vec<String>,
     run_non_finite: Vec<String>,
     runs_ok: usize,
+    /// The ten longest runs: (wall time \[s\], label).
+    slowest: Vec<(f64, String)>,
+    /// Cases refused by the long mode's work budget (`LoadOptions::max_work`).
+    over_budget: usize,
+    /// Per kind, the largest wall time per estimated operation of a run over 1 s, and that
+    /// run's estimate: (s per operation, operations).
+    slowest_rate: std::collections::BTreeMap<&'static str, (f64, f64)>,
 }
 
 /// Generate `n` cases and read each; `run` also runs the accepted ones.
-fn campaign(n: usize, run: Option<Duration>) -> Tally {
+/// `run`: the time limit and the work budget of the long mode.
+fn campaign(n: usize, run: Option<(Duration, f64)>) -> Tally {
     let seeds = seeds();
     let base = repo().join("examples");
     let mut rng = ChaCha8Rng::seed_from_u64(0x5eed_d1c0);
@@ -240,6 +260,9 @@ fn campaign(n: usize, run: Option<Duration>) -> Tally {
         }
         let mutated = lines.join("\n") + "\n";
         let label = format!("case {case} ({name})");
+        if std::env::var("DYNCONTACT_FUZZ_SHOW").is_ok_and(|v| v == case.to_string()) {
+            println!("{label}:\n{mutated}");
+        }
         if run.is_some() && case % 100 == 0 {
             println!(
                 "progress: {case} cases, {} accepted, {} runs ok, {} run errors, {} run panics, {} over the limit, {} non-finite; read: {} panics, {} without a key",
@@ -255,7 +278,8 @@ fn campaign(n: usize, run: Option<Duration>) -> Tally {
         }
         tally.cases += 1;
         LARGEST.with(|l| l.set(0));
-        let outcome = catch_unwind(AssertUnwindSafe(|| read(&mutated, &base)));
+        let budget = run.map(|(_, work)| work);
+        let outcome = catch_unwind(AssertUnwindSafe(|| read(&mutated, &base, budget)));
         let largest = LARGEST.with(Cell::get);
         if largest > READ_ALLOCATION_LIMIT {
             tally
@@ -266,6 +290,9 @@ fn campaign(n: usize, run: Option<Duration>) -> Tally {
             Err(_) => tally.panics.push(format!("{label}\n{mutated}")),
             Ok(Read::Refused(e)) => {
                 tally.refused += 1;
+                if e.to_string().contains("--max-work") {
+                    tally.over_budget += 1;
+                }
                 let message = e.to_string();
                 let mut words = key_words(&mutated);
                 words.extend(key_words(text));
@@ -273,10 +300,26 @@ fn campaign(n: usize, run: Option<Duration>) -> Tally {
                     tally.without_key.push(format!("{label}: {message}"));
                 }
             }
-            Ok(_) => {
+            Ok(read) => {
                 tally.accepted += 1;
-                if let Some(limit) = run {
-                    run_case(&base, limit, &label, &mutated, &mut tally);
+                if let Some((limit, work)) = run {
+                    let estimate = match &read {
+                        Read::Accepted(c) => {
+                            config::cost::estimate(c).map(|w| (c.kind(), w.total()))
+                        }
+                        _ => None,
+                    };
+                    drop(read);
+                    let mut words = key_words(&mutated);
+                    words.extend(key_words(text));
+                    let case = (label.as_str(), mutated.as_str(), words.as_slice());
+                    let wall = run_case(&base, (limit, work), case, &mut tally);
+                    if let Some((kind, total)) = estimate {
+                        let rate = tally.slowest_rate.entry(kind).or_insert((0.0, 0.0));
+                        if wall > 1.0 && wall / total > rate.0 {
+                            *rate = (wall / total, total);
+                        }
+                    }
                 }
             }
         }
@@ -288,29 +331,57 @@ fn campaign(n: usize, run: Option<Duration>) -> Tally {
 /// The outcome of a run: `Ok(all outputs finite)` or an error message.
 type RunResult = Result<bool, String>;
 
+/// The error a run returns when it passed the time limit (it stopped itself at a step).
+const TIME_LIMIT: &str = "time limit";
+
 fn simulate(read: Read, deadline: Instant) -> RunResult {
     let finite = |v: &[f64]| v.iter().all(|x| x.is_finite());
+    let past = || Instant::now() > deadline;
     match read {
         Read::Refused(_) => Ok(true),
         Read::Contact(case) => normal_contact(&case),
         Read::Accepted(c) => match *c {
             ScenarioConfig::Contact(case) => normal_contact(&case),
             ScenarioConfig::BallDrop(b) => {
-                let r = b.scenario.simulate(false).map_err(|e| e.to_string())?;
+                let mut stop = |_: sim::ball_drop::Progress| {
+                    if past() {
+                        ControlFlow::Break(())
+                    } else {
+                        ControlFlow::Continue(())
+                    }
+                };
+                let r = b
+                    .scenario
+                    .simulate_observed(false, &mut stop)
+                    .map_err(|e| e.to_string())?;
+                if !r.completed {
+                    return Err(TIME_LIMIT.into());
+                }
                 Ok(r.energy_drift.is_finite()
                     && r.impacts
                         .iter()
                         .all(|i| i.peak_force.is_finite() && i.max_approach.is_finite()))
             }
             ScenarioConfig::MovingLoad(m) => {
-                let r = beam::simulate_moving_loads(
+                let mut stop = |_: beam::StepProgress| {
+                    if past() {
+                        ControlFlow::Break(())
+                    } else {
+                        ControlFlow::Continue(())
+                    }
+                };
+                let r = beam::simulate_moving_loads_observed(
                     m.bridge.basis.as_ref(),
                     &m.bridge.damping,
                     &m.loads,
                     &m.settings,
                     &m.points,
+                    &mut stop,
                 )
                 .map_err(|e| e.to_string())?;
+                if !r.completed {
+                    return Err(TIME_LIMIT.into());
+                }
                 Ok(finite(&r.deflection) && finite(&r.acceleration) && finite(&r.bending_moment))
             }
             ScenarioConfig::VehicleBridge(v) => {
@@ -322,8 +393,8 @@ fn simulate(read: Read, deadline: Instant) -> RunResult {
                 }
                 let end = s.end_time();
                 while s.t() < end - 1e-9 * end.max(1.0) {
-                    if Instant::now() > deadline {
-                        return Err("time limit".into());
+                    if past() {
+                        return Err(TIME_LIMIT.into());
                     }
                     s.step().map_err(|e| e.to_string())?;
                 }
@@ -342,25 +413,51 @@ fn normal_contact(case: &config::contact::PreparedCase) -> RunResult {
     }
 }
 
-/// Read (again, in the worker thread: the configs are not `Send`) and run one case.
-fn run_case(base: &Path, limit: Duration, label: &str, text: &str, tally: &mut Tally) {
+/// Read (again, in the worker thread: the configs are not `Send`) and run one case. A run
+/// past the limit stops itself at its next step (a run that does not, e.g. one stuck inside
+/// one step, is abandoned after one more second and counted as over the limit too).
+/// Returns the wall time \[s\].
+/// `words`: the keys of the mutated file and of its seed (the words a message may name).
+fn run_case(
+    base: &Path,
+    (limit, work): (Duration, f64),
+    (label, text, words): (&str, &str, &[String]),
+    tally: &mut Tally,
+) -> f64 {
     let (tx, rx) = mpsc::channel();
-    let deadline = Instant::now() + limit;
+    let start = Instant::now();
+    let deadline = start + limit;
     let (base, owned) = (base.to_path_buf(), text.to_string());
     std::thread::spawn(move || {
-        let r = catch_unwind(AssertUnwindSafe(|| simulate(read(&owned, &base), deadline)));
+        let r = catch_unwind(AssertUnwindSafe(|| {
+            simulate(read(&owned, &base, Some(work)), deadline)
+        }));
         let _ = tx.send(r);
     });
-    match rx.recv_timeout(limit + Duration::from_secs(1)) {
-        Err(_) => tally.run_over_limit.push(format!("{label}\n{text}")),
+    let outcome = rx.recv_timeout(limit + Duration::from_secs(1));
+    let wall = start.elapsed().as_secs_f64();
+    tally.slowest.push((wall, label.to_string()));
+    tally.slowest.sort_by(|a, b| b.0.total_cmp(&a.0));
+    tally.slowest.truncate(10);
+    match outcome {
+        Err(_) => tally
+            .run_over_limit
+            .push(format!("{label} (stuck)\n{text}")),
         Ok(Err(_)) => tally.run_panics.push(format!("{label}\n{text}")),
-        Ok(Ok(Err(e))) if e == "time limit" => {
-            tally.run_over_limit.push(format!("{label}\n{text}"))
+        Ok(Ok(Err(e))) if e == TIME_LIMIT => tally.run_over_limit.push(format!("{label}\n{text}")),
+        Ok(Ok(Err(e))) => {
+            tally.run_errors += 1;
+            if !names_a_key(&e, words) {
+                tally.run_errors_without_key.push(format!("{label}: {e}"));
+            }
+            if tally.run_error_samples.len() < 10 {
+                tally.run_error_samples.push(format!("{label}: {e}"));
+            }
         }
-        Ok(Ok(Err(_))) => tally.run_errors += 1,
         Ok(Ok(Ok(true))) => tally.runs_ok += 1,
         Ok(Ok(Ok(false))) => tally.run_non_finite.push(format!("{label}\n{text}")),
     }
+    wall
 }
 
 fn report(t: &Tally) {
@@ -405,6 +502,13 @@ fn fuzz_scenario_reader() {
     assert!(t.large_allocations.is_empty(), "{:#?}", t.large_allocations);
 }
 
+/// The long mode's default work budget \[operations\] (`DYNCONTACT_FUZZ_MAX_WORK`): the
+/// product's limit (`sim::config::cost::MAX_WORK`, a day of work) lets through runs of hours
+/// that are sensible (small steps, long trains); the fuzz refuses those up front like a user
+/// who passes `--max-work`, and checks that every run it accepts ends within the time limit
+/// (a run that does not had a wrong cost estimate or spun).
+const FUZZ_MAX_WORK: f64 = 5e9;
+
 /// Long mode: read AND run (module documentation).
 #[test]
 #[ignore = "long: runs every accepted scenario (DYNCONTACT_FUZZ_CASES, DYNCONTACT_FUZZ_LIMIT_S)"]
@@ -417,9 +521,23 @@ fn fuzz_scenario_runs() {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(30.0);
+    let work = std::env::var("DYNCONTACT_FUZZ_MAX_WORK")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(FUZZ_MAX_WORK);
     let start = Instant::now();
-    let t = campaign(n, Some(Duration::from_secs_f64(limit)));
+    let t = campaign(n, Some((Duration::from_secs_f64(limit), work)));
     report(&t);
+    println!(
+        "work budget {work:e} operations: {} cases refused by it",
+        t.over_budget
+    );
+    for (kind, (rate, total)) in &t.slowest_rate {
+        println!(
+            "  {kind}: slowest {:.2e} s per 1e9 estimated operations (a run of {total:.2e})",
+            rate * 1e9
+        );
+    }
     println!(
         "runs: {} ok, {} failed with an error, {} panics, {} over {limit} s, {} with non-finite outputs; {:.0} s",
         t.runs_ok,
@@ -429,6 +547,12 @@ fn fuzz_scenario_runs() {
         t.run_non_finite.len(),
         start.elapsed().as_secs_f64()
     );
+    for (wall, label) in &t.slowest {
+        println!("  slow: {wall:.1} s {label}");
+    }
+    for m in &t.run_error_samples {
+        println!("  run error: {m}");
+    }
     for m in t
         .run_panics
         .iter()
@@ -438,7 +562,24 @@ fn fuzz_scenario_runs() {
     {
         println!("---\n{m}");
     }
+    for m in &t.run_errors_without_key {
+        println!("  run error without a key: {m}");
+    }
+    // The figures of issue #9 (an allocation abort would have ended this process).
+    println!(
+        "FIGURES: {} inputs, {} run ({} refused by the work budget {work:e}); panics {}, aborts 0, hangs over {limit} s {}, messages without a key {} (and {} of the {} run failures), non-finite outputs {}",
+        t.cases,
+        t.accepted,
+        t.over_budget,
+        t.panics.len() + t.run_panics.len(),
+        t.run_over_limit.len(),
+        t.without_key.len(),
+        t.run_errors_without_key.len(),
+        t.run_errors,
+        t.run_non_finite.len()
+    );
     assert!(t.panics.is_empty() && t.without_key.is_empty());
     assert!(t.run_panics.is_empty(), "run panics");
     assert!(t.run_non_finite.is_empty(), "non-finite outputs");
+    assert!(t.run_over_limit.is_empty(), "runs over {limit} s");
 }

@@ -26,6 +26,8 @@
 //! between two samples of one step's dense output cannot be seen by rule 2; rule 1 and a
 //! `max_step` in the options then bound the risk.
 
+use std::ops::ControlFlow;
+
 use super::{OdeStepper, OdeSystem};
 use crate::error::IntegrateError;
 use crate::root::illinois;
@@ -144,6 +146,9 @@ pub struct Solution {
     pub guard_retries: usize,
     /// `true` when a terminal event ended the run (then the last output is the event).
     pub terminated: bool,
+    /// `true` when the observer of [`solve_observed`] stopped the run before `t_end` (then the
+    /// last output is the last accepted step).
+    pub stopped: bool,
 }
 
 /// Integrate from `(t0, y0)` to `t_end` with any stepper, recording `output` and locating
@@ -151,10 +156,28 @@ pub struct Solution {
 pub fn solve(
     stepper: &mut dyn OdeStepper,
     sys: &mut dyn OdeSystem,
+    start: (f64, &[f64]),
+    t_end: f64,
+    events: &mut [Event<'_>],
+    output: &Output,
+) -> Result<Solution, IntegrateError> {
+    solve_observed(stepper, sys, start, t_end, events, output, &mut |_, _| {
+        ControlFlow::Continue(())
+    })
+}
+
+/// [`solve`] with an `observer` called with `(t, y)` after every accepted step short of `t_end` (after its
+/// events and outputs are recorded); `ControlFlow::Break` ends the run there with
+/// [`Solution::stopped`] set (e.g. a user's interrupt or a wall-clock budget). The observer
+/// is not called after a step that a terminal event ended.
+pub fn solve_observed(
+    stepper: &mut dyn OdeStepper,
+    sys: &mut dyn OdeSystem,
     (t0, y0): (f64, &[f64]),
     t_end: f64,
     events: &mut [Event<'_>],
     output: &Output,
+    observer: &mut dyn FnMut(f64, &[f64]) -> ControlFlow<()>,
 ) -> Result<Solution, IntegrateError> {
     if t_end.is_nan() || t_end <= t0 || t_end.is_infinite() {
         return Err(super::invalid(
@@ -185,6 +208,7 @@ pub fn solve(
         stats: Stats::default(),
         guard_retries: 0,
         terminated: false,
+        stopped: false,
     };
     let mut next_output = 0;
     if matches!(output, Output::Steps) {
@@ -233,6 +257,10 @@ pub fn solve(
         }
         for (i, ev) in events.iter_mut().enumerate() {
             run.g_prev[i] = ev.eval(stepper.t(), stepper.y());
+        }
+        if stepper.t() < t_end && observer(stepper.t(), stepper.y()).is_break() {
+            sol.stopped = true;
+            break;
         }
     }
     if matches!(output, Output::Final) && !sol.terminated {

@@ -2,14 +2,16 @@
 //! for contact start (guarded), maximum approach, peak force and contact end.
 
 use std::cell::RefCell;
+use std::ops::ControlFlow;
 use std::rc::Rc;
 
 use faer::MatMut;
-use integrate::ode::{Direction, Event, OdeOptions, OdeSystem, Output, solve};
+use integrate::IntegrateError;
+use integrate::ode::{Direction, Event, OdeOptions, OdeSystem, Output, solve_observed};
 
 use super::{
-    BallDrop, BallDropError, ContactForce, HertzImpact, Impact, Integrator, RunOutput, RunStats,
-    Sample,
+    BallDrop, BallDropError, ContactForce, HertzImpact, Impact, Integrator, Progress, RunOutput,
+    RunStats, Sample, invalid,
 };
 
 /// Shared force model (the system and the peak-force event both evaluate it, never at once).
@@ -81,12 +83,14 @@ impl OdeSystem for DropSystem {
     }
 }
 
+/// The run; `(interval, record)` as in the driver, an adaptive method stopped with an error
+/// after `step_budget` steps, `observer` after every accepted step.
 pub(super) fn run(
     scenario: &BallDrop,
     model: ContactForce,
     reference: &HertzImpact,
-    interval: f64,
-    record: bool,
+    (interval, record, step_budget): (f64, bool, usize),
+    observer: &mut dyn FnMut(Progress) -> ControlFlow<()>,
 ) -> Result<RunOutput, BallDropError> {
     let Integrator::Ode {
         method,
@@ -106,7 +110,7 @@ pub(super) fn run(
             rtol,
             atol,
             max_step: max_step.unwrap_or(f64::INFINITY),
-            max_steps: 100_000_000,
+            max_steps: step_budget,
             ..OdeOptions::default()
         }
     } else {
@@ -174,18 +178,35 @@ pub(super) fn run(
     }
     let output = if record { Output::Steps } else { Output::Final };
     let y0 = [scenario.height, scenario.velocity, 0.0];
-    let solved = solve(
+    let end = scenario.duration;
+    let mut steps = 0;
+    let solved = solve_observed(
         stepper.as_mut(),
         &mut sys,
         (0.0, &y0),
-        scenario.duration,
+        end,
         &mut events,
         &output,
+        &mut |t, _y| {
+            steps += 1;
+            observer(Progress { t, end, steps })
+        },
     );
     if let Some(e) = error.borrow_mut().take() {
         return Err(e);
     }
-    let sol = solved?;
+    let sol = match solved {
+        Err(IntegrateError::TooManySteps { t, max_steps }) if adaptive => {
+            return Err(invalid(
+                "duration",
+                scenario.duration,
+                &format!(
+                    "the adaptive method reached its step budget of {max_steps} steps (20 × the plan's estimate, at least 1e6) at t = {t:e} s: the ball has come to rest on the surface or bounces ever faster (every contact step is limited to t_c/50, [integrator] guard_step), or an explicit method meets a stiff contact ([contact] damping / [ball] mass); shorten `duration` or use radau5"
+                ),
+            ));
+        }
+        other => other?,
+    };
     drop(events);
     let mut model = model.borrow_mut();
 
@@ -265,6 +286,7 @@ pub(super) fn run(
         impacts,
         final_energy,
         final_time: t_end,
+        completed: !sol.stopped,
         stats: RunStats {
             method: method.name(),
             steps: st.steps,

@@ -7,7 +7,9 @@
 //! which uses the Hertz constant `K` of the actual geometry). A ball that starts at rest on
 //! the surface has no impact speed; its time scale is then the half-period `π/ω` of the
 //! oscillation linearised at the largest approach under gravity,
-//! `ω² = (3/2) K √δ* / m`.
+//! `ω² = (3/2) K √δ* / m`. An impact so slow that this half-period (with the approach of a
+//! ball released on the surface, `δ* = (5mg/(2K))^{2/3}`) is shorter than `t_c` ends at rest
+//! on the surface: the shorter of the two is the time scale.
 //!
 //! # Step refinement
 //! A fixed step longer than `t_c / STEPS_PER_CONTACT` is replaced by `t_c / STEPS_PER_CONTACT`
@@ -24,6 +26,14 @@ use super::{BallDrop, BallDropError, BallShape, ForceModel, HertzImpact, Integra
 pub const STEPS_PER_CONTACT: f64 = 50.0;
 /// Largest estimated step count of a run.
 pub const MAX_STEPS: f64 = 2e7;
+/// An adaptive run may take this many times its estimated steps (at least
+/// [`MIN_STEP_BUDGET`], at most [`MAX_STEPS`]) before it is stopped with an error: the
+/// estimate assumes elastic bounces, while a ball that comes to rest on the surface (damping,
+/// or an L-stable method's numerical dissipation making the bounces ever shorter) stays in
+/// contact with steps of `t_c/50` for the rest of the run.
+pub const ADAPTIVE_STEP_FACTOR: f64 = 20.0;
+/// Smallest step budget of an adaptive run.
+pub const MIN_STEP_BUDGET: f64 = 1e6;
 /// Largest estimated boundary-element work of a run: contact steps × elements².
 pub const MAX_BEM_WORK: f64 = 1e9;
 /// `|energy_drift|` above which a result is flagged (1 % of the impact energy).
@@ -89,17 +99,47 @@ pub struct RunPlan {
     pub refined: bool,
     /// Estimated number of steps of the run.
     pub estimated_steps: f64,
+    /// Estimated steps in contact (each one a contact-law evaluation per stage; a
+    /// boundary-element solve with `model = "bem"`).
+    pub contact_steps: f64,
+}
+
+impl RunPlan {
+    /// Most steps an adaptive run may take ([`ADAPTIVE_STEP_FACTOR`]).
+    pub fn step_budget(&self) -> usize {
+        (ADAPTIVE_STEP_FACTOR * self.estimated_steps).clamp(MIN_STEP_BUDGET, MAX_STEPS) as usize
+    }
+}
+
+impl BallDrop {
+    /// The plan of the run [`BallDrop::simulate`] would make (the scenario is validated first;
+    /// an absurd run is an error here too).
+    pub fn plan(&self) -> Result<RunPlan, BallDropError> {
+        let material = self.validate()?;
+        let k = super::hertz_constant(&self.shape, &material)?;
+        let reference = HertzImpact::new(self.mass, k, self.impact_speed(), self.gravity);
+        plan(self, k, &reference).map(|(p, _)| p)
+    }
 }
 
 /// The time scale of the contact (module documentation).
 pub(super) fn contact_time(s: &BallDrop, k: f64, reference: &HertzImpact) -> f64 {
+    let half_period = |d: f64| std::f64::consts::PI / (1.5 * k * d.sqrt() / s.mass).sqrt();
     let tc = reference.contact_duration;
     if tc.is_finite() && tc > 0.0 {
-        return tc;
+        // An impact far slower than the fall under gravity over the approach (a drop from a
+        // height of nanometres) ends at rest on the surface: its time scale is that of a
+        // ball released on the surface, δ* = (5 m g / (2K))^{2/3}, when that is shorter.
+        let at_rest = (2.5 * s.mass * s.gravity / k).powf(2.0 / 3.0);
+        return if at_rest > 0.0 {
+            tc.min(half_period(at_rest))
+        } else {
+            tc
+        };
     }
     let d = reference.max_approach;
     if d > 0.0 {
-        std::f64::consts::PI / (1.5 * k * d.sqrt() / s.mass).sqrt()
+        half_period(d)
     } else {
         f64::INFINITY
     }
@@ -206,6 +246,7 @@ pub(super) fn plan(
             contact_step,
             refined,
             estimated_steps,
+            contact_steps: contact_steps.min(estimated_steps),
         },
         integrator,
     ))

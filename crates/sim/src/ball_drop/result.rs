@@ -104,8 +104,11 @@ pub struct BallDropResult {
     pub reference: HertzImpact,
     /// Hertz constant K of `F = K δ^{3/2}` \[N/m^{3/2}\].
     pub hertz_constant: f64,
-    /// Time reached \[s\].
+    /// Time reached \[s\] (`duration` when `completed`).
     pub final_time: f64,
+    /// `false` when the observer of [`simulate_observed`](super::BallDrop::simulate_observed)
+    /// stopped the run before `duration` (the series, impacts and energy end at `final_time`).
+    pub completed: bool,
     /// The run's plan: contact time scale, the fixed step used in contact (refined
     /// automatically to `t_c/50` when the given one was longer), the estimated step count.
     pub plan: RunPlan,
@@ -114,4 +117,16 @@ pub struct BallDropResult {
     /// Accuracy warnings: `|energy_drift|` above [`ENERGY_DRIFT_LIMIT`](super::plan::ENERGY_DRIFT_LIMIT) or `step_ratio`
     /// above [`STEP_RATIO_LIMIT`](super::plan::STEP_RATIO_LIMIT); empty when neither is exceeded.
     pub accuracy_flags: Vec<String>,
+}
+
+/// Where a run is: given to the observer of
+/// [`BallDrop::simulate_observed`](super::BallDrop::simulate_observed) after every accepted step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Progress {
+    /// Time reached \[s\].
+    pub t: f64,
+    /// End time of the run (`duration`) \[s\].
+    pub end: f64,
+    /// Accepted steps so far.
+    pub steps: usize,
 }

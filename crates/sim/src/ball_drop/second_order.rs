@@ -7,13 +7,15 @@
 //! free-flight parabola (integrated exactly by these schemes), then continues with `dt`. Contact start/end (`z = 0`) and the maximum approach (`z' = 0`) are located inside
 //! each step by the Illinois method on the dense output.
 
+use std::ops::ControlFlow;
+
 use faer::{Mat, MatMut, MatRef};
 use integrate::structural::{StructuralStepper, StructuralSystem};
 use integrate::{IntegrateError, illinois};
 
 use super::{
-    BallDrop, BallDropError, ContactForce, ElasticForce, Impact, Integrator, RunOutput, RunStats,
-    Sample,
+    BallDrop, BallDropError, ContactForce, ElasticForce, Impact, Integrator, Progress, RunOutput,
+    RunStats, Sample,
 };
 
 /// Iteration limit of the Illinois root finder (superlinear: a few tens suffice; on the limit
@@ -60,11 +62,12 @@ impl StructuralSystem for DropStructure {
     }
 }
 
+/// The run; `(interval, record)` as in the driver, `observer` after every accepted step.
 pub(super) fn run(
     scenario: &BallDrop,
     model: ContactForce,
-    interval: f64,
-    record: bool,
+    (interval, record): (f64, bool),
+    observer: &mut dyn FnMut(Progress) -> ControlFlow<()>,
 ) -> Result<RunOutput, BallDropError> {
     let Integrator::Structural {
         method,
@@ -109,6 +112,7 @@ pub(super) fn run(
     let mut last_kept = f64::NEG_INFINITY;
     let mut guard_retries = 0;
     let mut out = [0.0];
+    let mut completed = true;
     if record {
         samples.push(sample(&mut sys, 0.0, scenario.height, scenario.velocity)?);
         last_kept = 0.0;
@@ -185,9 +189,20 @@ pub(super) fn run(
             }
             in_contact = false;
         }
-        if record && (z1 < 0.0 || z0 < 0.0 || t1 - last_kept >= interval || t1 >= t_end) {
+        let stop = t1 < t_end * (1.0 - 1e-14)
+            && observer(Progress {
+                t: t1,
+                end: t_end,
+                steps: stepper.stats().steps,
+            })
+            .is_break();
+        if record && (z1 < 0.0 || z0 < 0.0 || t1 - last_kept >= interval || t1 >= t_end || stop) {
             samples.push(sample(&mut sys, t1, z1, v1)?);
             last_kept = t1;
+        }
+        if stop {
+            completed = false;
+            break;
         }
     }
     let (t_fin, z_fin, v_fin) = (stepper.t(), stepper.q()[0], stepper.v()[0]);
@@ -198,6 +213,7 @@ pub(super) fn run(
         impacts,
         final_energy,
         final_time: t_fin,
+        completed,
         stats: RunStats {
             method: scenario.integrator.name(),
             steps: st.steps,

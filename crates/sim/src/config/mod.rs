@@ -52,6 +52,7 @@ pub mod ball_drop;
 pub mod bridge;
 pub mod checks;
 pub mod contact;
+pub mod cost;
 pub mod integrator;
 pub mod moving_load;
 pub mod vehicle_bridge;
@@ -89,6 +90,9 @@ pub struct LoadOptions {
     /// Replaces the ball drop's `[integrator] method` (`dyncontact run --integrator`); an
     /// error for the other kinds.
     pub integrator: Option<String>,
+    /// Largest estimated work of a run (default [`cost::MAX_WORK`]; `dyncontact run
+    /// --max-work`).
+    pub max_work: Option<f64>,
 }
 
 /// Parse a scenario's text once, dispatch on `kind`, validate. `base` is the directory that
@@ -116,7 +120,20 @@ pub fn load(text: &str, base: &Path, options: &LoadOptions) -> Result<ScenarioCo
             "--integrator {name}: kind = \"{kind}\" does not take --integrator; set its integrator in the scenario file"
         );
     }
-    match kind.as_str() {
+    let config = build(&kind, table, text, base, options)?;
+    cost::check(&config, options.max_work.unwrap_or(cost::MAX_WORK))?;
+    Ok(config)
+}
+
+/// The validated scenario of a parsed file of kind `kind`.
+fn build(
+    kind: &str,
+    table: Document<'_>,
+    text: &str,
+    base: &Path,
+    options: &LoadOptions,
+) -> Result<ScenarioConfig, ConfigError> {
+    match kind {
         "ball_drop" => {
             let file = deserialize(table, text)?;
             ball_drop::build(file, options.integrator.as_deref())

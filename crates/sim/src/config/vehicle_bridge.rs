@@ -47,9 +47,6 @@ pub const DEFAULT_LAMBDA_MAX: f64 = 50.0;
 pub const DEFAULT_IRREGULARITY_COMPONENTS: usize = 500;
 /// Largest setup work of a random irregularity (table points × cosines).
 pub const MAX_IRREGULARITY_WORK: f64 = 2e9;
-/// Largest estimated work of a run with boundary-element contact (floating-point operations;
-/// about a day at 1e10 operations per second).
-pub const MAX_BEM_WORK: f64 = 1e15;
 
 /// A validated vehicle–bridge scenario.
 pub struct VehicleBridgeConfig {
@@ -524,7 +521,8 @@ fn end_time(s: &Scenario) -> f64 {
     })
 }
 
-/// Steps, output rows and setup/contact work of the run, refused when absurd.
+/// Steps, output rows and the irregularity's setup work of the run, refused when absurd (the
+/// work of the steps: [`super::cost`]).
 fn check_run_length(s: &Scenario, every: usize) -> Result<(), ConfigError> {
     let end = end_time(s);
     let steps = checks::steps(
@@ -557,21 +555,6 @@ fn check_run_length(s: &Scenario, every: usize) -> Result<(), ConfigError> {
                 p.wavenumbers.len(),
                 checks::number(work),
                 checks::number(MAX_IRREGULARITY_WORK)
-            )));
-        }
-    }
-    if let ContactModel::Bem { elements, .. } = s.contact {
-        let n = (elements * elements) as f64;
-        // An FFT convolution on the doubled grid per CG iteration, ~20 iterations per solve,
-        // ~3 solves per step and wheel.
-        let work = steps * s.wheels.len() as f64 * 60.0 * 4.0 * n * (4.0 * n).log2().max(1.0) * 5.0;
-        if work.is_nan() || work > MAX_BEM_WORK {
-            return Err(ConfigError::TooLarge(format!(
-                "boundary-element contact on a {elements} × {elements} grid (contact.grid) for {} wheels over {} steps needs about {} floating-point operations (limit {}); use a coarser contact.grid, model = \"hertz\" or a larger integrator.dt",
-                s.wheels.len(),
-                checks::number(steps),
-                checks::number(work),
-                checks::number(MAX_BEM_WORK)
             )));
         }
     }
