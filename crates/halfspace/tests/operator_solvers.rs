@@ -40,7 +40,12 @@ fn compare_normal(fast: &NormalSolution, slow: &NormalSolution) {
     assert_eq!(fast.iterations, slow.iterations);
     assert_eq!(fast.in_contact, slow.in_contact);
     assert_fields_close("pressure", &slow.pressure, &fast.pressure, 1e-12);
-    assert_fields_close("displacement", &slow.displacement, &fast.displacement, 1e-12);
+    assert_fields_close(
+        "displacement",
+        &slow.displacement,
+        &fast.displacement,
+        1e-12,
+    );
     assert_close("force", slow.normal_force, fast.normal_force, 1e-12);
     assert_close("approach", slow.approach, fast.approach, 1e-12);
     match (fast.dfn_dapproach, slow.dfn_dapproach) {
@@ -135,8 +140,12 @@ fn tangential_solver_over_direct_operator_equals_fft_solve() {
         eta: -2e-4,
         phi: 0.5,
     });
-    let fr = fast.steady_rolling(&pressure, mu, rolling, &options).unwrap();
-    let sr = slow.steady_rolling(&pressure, mu, rolling, &options).unwrap();
+    let fr = fast
+        .steady_rolling(&pressure, mu, rolling, &options)
+        .unwrap();
+    let sr = slow
+        .steady_rolling(&pressure, mu, rolling, &options)
+        .unwrap();
     assert!(fr.slip_elements > 0 && fr.adhesion_elements > 0);
     compare_tangential(&fr, &sr);
 

@@ -296,9 +296,7 @@ mod tests {
     fn flamant_approach(fpl: f64, a: f64, d: f64, nu: f64, e_star: f64) -> f64 {
         let p0 = 2.0 * fpl / (std::f64::consts::PI * a);
         let rule = gauss_legendre(20);
-        let kernel = |x: f64| {
-            ((d * d) / (x * x)).ln_1p() - d * d / ((1.0 - nu) * (x * x + d * d))
-        };
+        let kernel = |x: f64| ((d * d) / (x * x)).ln_1p() - d * d / ((1.0 - nu) * (x * x + d * d));
         let mut total = 0.0;
         let mut hi = 0.5 * std::f64::consts::PI;
         for _ in 0..60 {
@@ -322,14 +320,20 @@ mod tests {
             crate::material::Body::elastic(210e9, 0.3).unwrap(),
         )
         .unwrap();
-        assert!(HertzLine::new(0.05, 0.02, 0.0, &m).is_err(), "zero depth is rejected");
+        assert!(
+            HertzLine::new(0.05, 0.02, 0.0, &m).is_err(),
+            "zero depth is rejected"
+        );
         let fpl = 2e5;
         let a = HertzLine::new(0.05, 0.02, 1.0, &m).unwrap().half_width(fpl);
         for depth in [1.5 * a, 10.0 * a, 300.0 * a] {
             let law = HertzLine::new(0.05, 0.02, depth, &m).unwrap();
             let numeric = flamant_approach(fpl, a, depth, m.nu, m.e_star);
             let closed = law.approach(fpl).unwrap();
-            println!("d/a = {:.1}: closed {closed:e}, Flamant {numeric:e}", depth / a);
+            println!(
+                "d/a = {:.1}: closed {closed:e}, Flamant {numeric:e}",
+                depth / a
+            );
             // Quadrature error ~1e-15 (60 graded panels × 20 points); measured 4e-15.
             assert_relative_eq!(closed, numeric, max_relative = 1e-12);
             // The asymptote (F'/(π E*))(2 ln(2d/a) − ν/(1 − ν)) to O((a/d)²).
@@ -354,7 +358,11 @@ mod tests {
                 delta,
                 max_relative = 1e-13
             );
-            assert_relative_eq!(law.static_approach(out.force).unwrap(), delta, max_relative = 1e-13);
+            assert_relative_eq!(
+                law.static_approach(out.force).unwrap(),
+                delta,
+                max_relative = 1e-13
+            );
             // Tangent against a central difference (truncation O(h²) ~ 1e-12, round-off
             // 1e-16/1e-6 ~ 1e-10; measured ≤ 1e-10): 1e-8.
             let h = 1e-6 * delta;
@@ -367,7 +375,10 @@ mod tests {
             let step = delta / n as f64;
             let mut w = law.evaluate(delta, &[], &mut [], false).unwrap().force;
             for i in 1..n {
-                let f = law.evaluate(i as f64 * step, &[], &mut [], false).unwrap().force;
+                let f = law
+                    .evaluate(i as f64 * step, &[], &mut [], false)
+                    .unwrap()
+                    .force;
                 w += f * if i % 2 == 1 { 4.0 } else { 2.0 };
             }
             w *= step / 3.0;
@@ -381,7 +392,9 @@ mod tests {
             assert_eq!(out.patch_width, length);
         }
         // Beyond the range a ≤ d, and bad inputs: errors naming the key.
-        let err = law.evaluate(1.01 * delta_max, &[], &mut [], true).unwrap_err();
+        let err = law
+            .evaluate(1.01 * delta_max, &[], &mut [], true)
+            .unwrap_err();
         assert!(err.to_string().contains("approach"), "{err}");
         assert!(law.evaluate(f64::NAN, &[], &mut [], true).is_err());
         let out = law.evaluate(-1e-6, &[], &mut [], true).unwrap();

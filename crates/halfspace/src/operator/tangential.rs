@@ -414,12 +414,16 @@ impl DirectTangentialInfluence {
     }
 
     /// All coefficients of `kernel` for observation element `i` and loaded element `j`.
-    pub fn coefficients(&self, kernel: TangentialKernel, i: usize, j: usize) -> TangentialInfluence {
+    pub fn coefficients(
+        &self,
+        kernel: TangentialKernel,
+        i: usize,
+        j: usize,
+    ) -> TangentialInfluence {
         let g = &self.grid;
         let ((xi, yi), (xj, yj)) = (g.centre(i), g.centre(j));
-        let at = |shift: f64| {
-            tangential_influence(&self.material, xi - xj + shift, yi - yj, g.dx, g.dy)
-        };
+        let at =
+            |shift: f64| tangential_influence(&self.material, xi - xj + shift, yi - yj, g.dx, g.dy);
         match kernel {
             TangentialKernel::Direct => at(0.0),
             TangentialKernel::Shifted(d) => at(d),
