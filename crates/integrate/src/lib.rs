@@ -14,11 +14,13 @@
 pub mod error;
 mod lu;
 pub mod ode;
+pub mod root;
 pub mod stats;
 pub mod structural;
 
 pub use error::{CallbackError, IntegrateError};
 pub use ode::{Method, OdeOptions, OdeStepper, OdeSystem};
+pub use root::{Root, illinois};
 pub use stats::Stats;
 pub use structural::{
     FirstOrderForm, LinearStructure, NewtonOptions, StepEquation, StructuralMethod,

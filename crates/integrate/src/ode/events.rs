@@ -28,6 +28,7 @@
 
 use super::{OdeStepper, OdeSystem};
 use crate::error::IntegrateError;
+use crate::root::illinois;
 use crate::stats::Stats;
 
 /// Interior points of each step at which event functions are sampled (besides the end point).
@@ -391,56 +392,29 @@ fn first_sign_change(
     Ok(None)
 }
 
-/// Illinois (modified regula falsi, Dowell & Jarratt 1971) on `g(t, y(t))` over `[a, b]` with
-/// `g(a)·g(b) ≤ 0`; converges superlinearly, stops at a bracket width of `4ε·max(1, |t|)`.
+/// The root of `g(t, y(t))` over `[a, b]` with `g(a)·g(b) ≤ 0` by [`crate::root::illinois`]
+/// on the stepper's dense output (bracket width `4ε·max(1, |t|)`).
 fn find_root(
     stepper: &dyn OdeStepper,
     ev: &mut Event<'_>,
     index: usize,
-    (mut a, mut ga): (f64, f64),
-    (mut b, mut gb): (f64, f64),
+    a: (f64, f64),
+    b: (f64, f64),
     y_tmp: &mut [f64],
 ) -> Result<f64, IntegrateError> {
-    let (t_start, t_end) = (a, b);
-    let mut side = 0i8;
-    for _ in 0..MAX_ROOT_ITERATIONS {
-        if gb == 0.0 {
-            return Ok(b);
-        }
-        let tol = 4.0 * f64::EPSILON * b.abs().max(1.0);
-        if (b - a).abs() <= tol {
-            return Ok(b);
-        }
-        let mut c = (a * gb - b * ga) / (gb - ga);
-        if !(c > a && c < b) {
-            c = 0.5 * (a + b);
-        }
-        stepper.interpolate(c, y_tmp)?;
-        let gc = ev.eval(c, y_tmp);
-        if gc == 0.0 {
-            return Ok(c);
-        }
-        if (gc > 0.0) == (gb > 0.0) && gc != 0.0 {
-            // Root in [a, c].
-            b = c;
-            gb = gc;
-            if side == -1 {
-                ga *= 0.5;
-            }
-            side = -1;
-        } else {
-            a = c;
-            ga = gc;
-            if side == 1 {
-                gb *= 0.5;
-            }
-            side = 1;
-        }
+    let g = |t: f64| -> Result<f64, IntegrateError> {
+        stepper.interpolate(t, y_tmp)?;
+        Ok(ev.eval(t, y_tmp))
+    };
+    let root = illinois(g, a, b, MAX_ROOT_ITERATIONS)?;
+    if root.converged {
+        Ok(root.t)
+    } else {
+        Err(IntegrateError::EventLocation {
+            index,
+            t_start: a.0,
+            t_end: b.0,
+            iterations: MAX_ROOT_ITERATIONS,
+        })
     }
-    Err(IntegrateError::EventLocation {
-        index,
-        t_start,
-        t_end,
-        iterations: MAX_ROOT_ITERATIONS,
-    })
 }

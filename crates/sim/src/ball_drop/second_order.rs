@@ -9,11 +9,16 @@
 
 use faer::{Mat, MatMut, MatRef};
 use integrate::structural::{StructuralStepper, StructuralSystem};
+use integrate::{IntegrateError, illinois};
 
 use super::{
     BallDrop, BallDropError, ContactForce, ElasticForce, Impact, Integrator, RunOutput, RunStats,
-    Sample, find_root,
+    Sample,
 };
+
+/// Iteration limit of the Illinois root finder (superlinear: a few tens suffice; on the limit
+/// the better bracket end is taken).
+const ROOT_ITERATIONS: usize = 200;
 
 struct DropStructure {
     mass: Mat<f64>,
@@ -143,14 +148,16 @@ pub(super) fn run(
         }
         // Maximum approach: z' rises through 0 while in contact.
         if in_contact && v0 < 0.0 && v1 >= 0.0 {
-            let tm = find_root(
+            let tm = illinois(
                 |t| {
-                    let _ = stepper.dense_velocity(t, &mut out);
-                    out[0]
+                    stepper.dense_velocity(t, &mut out)?;
+                    Ok::<_, IntegrateError>(out[0])
                 },
                 (t0, v0),
                 (t1, v1),
-            );
+                ROOT_ITERATIONS,
+            )?
+            .t;
             stepper.dense_output(tm, &mut out)?;
             let delta = -out[0];
             let f = sys.model.elastic(delta, false)?.force;
@@ -161,14 +168,16 @@ pub(super) fn run(
         }
         // Contact end.
         if in_contact && z0 <= 0.0 && z1 > 0.0 {
-            let te = find_root(
+            let te = illinois(
                 |t| {
-                    let _ = stepper.dense_output(t, &mut out);
-                    out[0]
+                    stepper.dense_output(t, &mut out)?;
+                    Ok::<_, IntegrateError>(out[0])
                 },
                 (t0, z0),
                 (t1, z1),
-            );
+                ROOT_ITERATIONS,
+            )?
+            .t;
             stepper.dense_velocity(te, &mut out)?;
             if let Some(imp) = impacts.last_mut() {
                 imp.contact_duration = Some(te - imp.time);
