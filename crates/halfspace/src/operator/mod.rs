@@ -7,9 +7,10 @@
 //!
 //! * [`FftInfluence`]: the zero-padded FFT convolution with the tabulated circulant kernel,
 //!   O(n log n) (the default operator of [`crate::NormalSolver`]);
-//! * [`DirectInfluence`]: the O(n²) sum straight from Love's formula, with no table and no
-//!   FFT: the first-class slow oracle (as RustFFT's `Dft` is for its FFTs), for tests and
-//!   for checking the fast path on new grids.
+//! * [`DirectInfluence`]: the O(n²) sum straight from Love's formula; its products use no
+//!   table and no FFT (only its preconditioner is the FFT one, see below): the first-class
+//!   slow oracle (as RustFFT's `Dft` is for its FFTs), for tests and for checking the fast
+//!   path on new grids.
 //!
 //! **Tangential problem.** The tangential solver needs a family of kernels (A_xx, A_xy,
 //! A_yy, the coupling A_xn, A_yn, each also with shifted observation points for rolling):
