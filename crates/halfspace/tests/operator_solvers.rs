@@ -8,7 +8,10 @@
 //! iteration counts; far below the solvers' own tolerances (1e-8, 1e-7), so an operator
 //! that differed in any coefficient would fail.
 
+mod support;
+
 use halfspace::*;
+use support::ball_on_soft;
 
 /// max |a − b| ≤ tol · max |b| over two fields.
 fn assert_fields_close(name: &str, a: &[f64], b: &[f64], tol: f64) {
@@ -22,18 +25,6 @@ fn assert_fields_close(name: &str, a: &[f64], b: &[f64], tol: f64) {
 
 fn assert_close(name: &str, a: f64, b: f64, tol: f64) {
     assert!((a - b).abs() <= tol * b.abs(), "{name}: {a:e} vs {b:e}");
-}
-
-/// A rigid ball (R = 10 mm) on a soft elastic body (E = 1 GPa, ν = 0.2: K = −0.3) on an
-/// n × n grid 2.6 Hertz radii wide, with the Hertz force 50 N.
-fn ball_on_soft(n: usize) -> (Grid, Material, Vec<f64>) {
-    let m = Material::combine(Body::Rigid, Body::elastic(1e9, 0.2).unwrap()).unwrap();
-    let shape = GapShape::Quadratic { a: 50.0, b: 50.0 };
-    let h = shape.hertz(&m, NormalLoad::Force(50.0)).unwrap();
-    let d = 2.6 * h.a / n as f64;
-    let grid = Grid::centred(n, n, d, d, 0.0, 0.0).unwrap();
-    let gap = shape.sample(&grid).unwrap();
-    (grid, m, gap)
 }
 
 fn compare_normal(fast: &NormalSolution, slow: &NormalSolution) {
@@ -177,31 +168,35 @@ fn tangential_solver_over_direct_operator_equals_fft_solve() {
 fn coupled_solve_over_direct_operators_equals_fft_solve() {
     // Panagiotopoulos' outer loop (several passes for K ≠ 0), every product direct.
     let (grid, m, gap) = ball_on_soft(7);
-    let fast = solve_coupled(
-        &mut NormalSolver::new(grid, m).unwrap(),
-        &mut TangentialSolver::new(grid, m).unwrap(),
+    // The frictional indentation of the rigid ball (zero shift, μ = 0.3).
+    fn indent<N: InfluenceOperator, T: TangentialInfluenceOperator>(
+        mut normal: NormalSolver<N>,
+        mut tangential: TangentialSolver<T>,
+        gap: &[f64],
+    ) -> CoupledSolution {
+        solve_coupled(
+            &mut normal,
+            &mut tangential,
+            gap,
+            NormalLoad::Force(50.0),
+            0.3,
+            CoupledProblem::Shift(ShiftLoad::Shift { wx: 0.0, wy: 0.0 }),
+            &SolverOptions::default(),
+            &TangentialOptions::default(),
+            &CoupledOptions::default(),
+        )
+        .unwrap()
+    }
+    let fast = indent(
+        NormalSolver::new(grid, m).unwrap(),
+        TangentialSolver::new(grid, m).unwrap(),
         &gap,
-        NormalLoad::Force(50.0),
-        0.3,
-        CoupledProblem::Shift(ShiftLoad::Shift { wx: 0.0, wy: 0.0 }),
-        &SolverOptions::default(),
-        &TangentialOptions::default(),
-        &CoupledOptions::default(),
-    )
-    .unwrap();
-    let slow = solve_coupled(
-        &mut NormalSolver::with_operator(DirectInfluence::new(grid, m).unwrap()).unwrap(),
-        &mut TangentialSolver::with_operator(DirectTangentialInfluence::new(grid, m).unwrap())
-            .unwrap(),
+    );
+    let slow = indent(
+        NormalSolver::with_operator(DirectInfluence::new(grid, m).unwrap()).unwrap(),
+        TangentialSolver::with_operator(DirectTangentialInfluence::new(grid, m).unwrap()).unwrap(),
         &gap,
-        NormalLoad::Force(50.0),
-        0.3,
-        CoupledProblem::Shift(ShiftLoad::Shift { wx: 0.0, wy: 0.0 }),
-        &SolverOptions::default(),
-        &TangentialOptions::default(),
-        &CoupledOptions::default(),
-    )
-    .unwrap();
+    );
     assert!(fast.outer_iterations > 1);
     assert_eq!(fast.outer_iterations, slow.outer_iterations);
     compare_normal(&fast.normal, &slow.normal);

@@ -3,9 +3,12 @@
 //! the direct operators (sums of the closed-form influence coefficients, independent of the
 //! FFT path).
 
+mod support;
+
 use halfspace::influence::tangential_influence;
 use halfspace::operator::Update;
 use halfspace::*;
+use support::ball_on_soft;
 
 #[test]
 fn coupling_coefficient_is_boussinesq_radial_displacement() {
@@ -33,17 +36,6 @@ fn coupling_coefficient_is_boussinesq_radial_displacement() {
             a.yn
         );
     }
-}
-
-fn ball_on_soft(n: usize) -> (Grid, Material, Vec<f64>) {
-    // A rigid sphere (R = 10 mm) pressed into an elastic body (E = 1 GPa, ν = 0.2: K = −0.3).
-    let m = Material::combine(Body::Rigid, Body::elastic(1e9, 0.2).unwrap()).unwrap();
-    let shape = GapShape::Quadratic { a: 50.0, b: 50.0 };
-    let h = shape.hertz(&m, NormalLoad::Force(50.0)).unwrap();
-    let d = 2.6 * h.a / n as f64;
-    let grid = Grid::centred(n, n, d, d, 0.0, 0.0).unwrap();
-    let gap = shape.sample(&grid).unwrap();
-    (grid, m, gap)
 }
 
 #[test]
