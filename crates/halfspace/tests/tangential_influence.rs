@@ -2,38 +2,21 @@
 //! Cerruti's and Boussinesq's point-load solutions, and the FFT operator against the direct
 //! operator's sums.
 
+mod support;
+
 use halfspace::influence::tangential_influence;
 use halfspace::operator::Update;
 use halfspace::{
     Body, DirectTangentialInfluence, FftTangentialInfluence, Grid, Material,
     TangentialInfluenceOperator, TangentialKernel,
 };
+use support::gauss_legendre;
 
 /// 24-point Gauss–Legendre product rule over the element [−dx/2, dx/2] × [−dy/2, dy/2]
 /// of the point-load density f(X, Y) at offset (ox, oy).
 fn quadrature(f: impl Fn(f64, f64) -> f64, ox: f64, oy: f64, dx: f64, dy: f64) -> f64 {
     // Nodes and weights by Newton on the Legendre polynomial (independent of the primitives).
-    let n = 24;
-    let mut nodes = Vec::new();
-    for i in 1..=n {
-        let mut x = (std::f64::consts::PI * (i as f64 - 0.25) / (n as f64 + 0.5)).cos();
-        let mut dp = 0.0;
-        for _ in 0..100 {
-            let (mut p0, mut p1) = (1.0, x);
-            for k in 2..=n {
-                let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = n as f64 * (x * p1 - p0) / (x * x - 1.0);
-            let step = p1 / dp;
-            x -= step;
-            if step.abs() < 1e-16 {
-                break;
-            }
-        }
-        nodes.push((x, 2.0 / ((1.0 - x * x) * dp * dp)));
-    }
+    let nodes = gauss_legendre(24);
     let mut s = 0.0;
     for &(u, wu) in &nodes {
         for &(v, wv) in &nodes {
