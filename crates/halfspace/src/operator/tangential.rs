@@ -203,7 +203,6 @@ impl FftTangentialInfluence {
 
 /// The traction block of a prepared kernel (a free function over the fields, so that the
 /// plans can be borrowed mutably at the same time).
-#[inline]
 fn block<'a>(
     direct: &'a KernelSet,
     steady: &'a Option<KernelSet>,
@@ -366,9 +365,7 @@ impl TangentialInfluenceOperator for FftTangentialInfluence {
         (set.xx[centre], set.yy[centre])
     }
 
-    /// Reads contiguous rows of the centred tables. Inlined into the sweep (called once per
-    /// element update).
-    #[inline]
+    /// Reads contiguous rows of the centred tables.
     fn add_column(
         &self,
         kernel: TangentialKernel,

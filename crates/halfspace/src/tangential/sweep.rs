@@ -236,7 +236,6 @@ impl<T: TangentialInfluenceOperator> TangentialSolver<T> {
 }
 
 /// Exact solution of one element's problem (module documentation): returns (p_x, p_y, slips).
-#[inline]
 fn local_solve(rx: f64, ry: f64, cx: f64, cy: f64, g: f64) -> (f64, f64, bool) {
     let (ax, ay) = (-rx / cx, -ry / cy);
     if ax.hypot(ay) <= g {
