@@ -11,6 +11,7 @@
 
 use crate::error::{ContactError, positive};
 use crate::normcg::{NormalLoad, NormalSolver, SolverOptions};
+use crate::operator::{InfluenceOperator, TangentialInfluenceOperator};
 use crate::solution::NormalSolution;
 use crate::tangential::{
     RollingLoad, ShiftLoad, StepMotion, TangentialOptions, TangentialSolution, TangentialSolver,
@@ -85,9 +86,9 @@ fn rms_change(new: &[f64], old: &[f64]) -> (f64, f64) {
 
 /// Solve the coupled normal and tangential problem (module documentation).
 #[allow(clippy::too_many_arguments)]
-pub fn solve_coupled(
-    normal: &mut NormalSolver,
-    tangential: &mut TangentialSolver,
+pub fn solve_coupled<N: InfluenceOperator, T: TangentialInfluenceOperator>(
+    normal: &mut NormalSolver<N>,
+    tangential: &mut TangentialSolver<T>,
     gap: &[f64],
     load: NormalLoad,
     mu: f64,
@@ -120,9 +121,9 @@ pub fn solve_coupled(
 /// `motion.delta_q = 0` this is a quasi-static loading stage, as in CONTACT's Spence example
 /// (a sequence of normal loads linked by the previous tractions).
 #[allow(clippy::too_many_arguments)]
-pub fn solve_coupled_step(
-    normal: &mut NormalSolver,
-    tangential: &mut TangentialSolver,
+pub fn solve_coupled_step<N: InfluenceOperator, T: TangentialInfluenceOperator>(
+    normal: &mut NormalSolver<N>,
+    tangential: &mut TangentialSolver<T>,
     gap: &[f64],
     load: NormalLoad,
     mu: f64,
@@ -154,9 +155,9 @@ pub fn solve_coupled_step(
 }
 
 /// The checks shared by both entry points.
-fn validate(
-    normal: &NormalSolver,
-    tangential: &TangentialSolver,
+fn validate<N: InfluenceOperator, T: TangentialInfluenceOperator>(
+    normal: &NormalSolver<N>,
+    tangential: &TangentialSolver<T>,
     options: &CoupledOptions,
 ) -> Result<(), ContactError> {
     positive("coupled tol", options.tol)?;
@@ -180,16 +181,16 @@ fn validate(
 /// The outer loop (module documentation): normal solve on `effective`, then
 /// `solve_tangential` on its pressure, until p_n and p_t stop changing; one pass for K = 0.
 #[allow(clippy::too_many_arguments)]
-fn outer_loop(
-    normal: &mut NormalSolver,
-    tangential: &mut TangentialSolver,
+fn outer_loop<N: InfluenceOperator, T: TangentialInfluenceOperator>(
+    normal: &mut NormalSolver<N>,
+    tangential: &mut TangentialSolver<T>,
     gap: &[f64],
     mut effective: Vec<f64>,
     load: NormalLoad,
     normal_options: &SolverOptions,
     options: &CoupledOptions,
     mut solve_tangential: impl FnMut(
-        &mut TangentialSolver,
+        &mut TangentialSolver<T>,
         &[f64],
     ) -> Result<TangentialSolution, ContactError>,
 ) -> Result<CoupledSolution, ContactError> {

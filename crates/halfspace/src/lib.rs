@@ -7,7 +7,9 @@
 //! e = h − δ + A p = 0 in contact and e > 0, p = 0 outside, where A holds Love's influence
 //! coefficients for piecewise-constant pressure ([`influence`]). Products with A are
 //! zero-padded FFT convolutions ([`convolution`]); the solver is the bound-constrained
-//! conjugate-gradient method NormCG with an FFT preconditioner ([`normcg`]).
+//! conjugate-gradient method NormCG with an FFT preconditioner ([`normcg`]). The solvers are
+//! generic over the influence operator ([`operator`]): the FFT one by default, the direct
+//! O(n²) sums of the closed-form coefficients as the slow oracle.
 //!
 //! The tangential problem with Coulomb friction — shift (Cattaneo–Mindlin), steady and
 //! transient rolling — is solved on the same grid by [`TangentialSolver`] ([`tangential`];
@@ -66,7 +68,10 @@ pub use hertz::{Hertz, LineHertz, curvatures_from_radii};
 pub use linear_theory::{CreepCoefficients, creep_coefficients, linear_forces};
 pub use material::{Body, Material};
 pub use normcg::{NormalLoad, NormalSolver, SolverOptions};
-pub use operator::{DirectInfluence, FftInfluence, InfluenceOperator};
+pub use operator::{
+    DirectInfluence, DirectTangentialInfluence, FftInfluence, FftTangentialInfluence,
+    InfluenceOperator, TangentialInfluenceOperator, TangentialKernel,
+};
 pub use solution::NormalSolution;
 pub use strategy::{TangentialMethod, TangentialStrategy, tangential_strategy};
 pub use tangential::{

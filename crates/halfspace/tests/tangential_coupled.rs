@@ -1,9 +1,14 @@
 //! Dissimilar materials (K ≠ 0): the coupling coefficients against Boussinesq's radial
 //! displacement, and the Panagiotopoulos outer loop against its own equations evaluated by
-//! direct sums of the closed-form influence coefficients (independent of the FFT path).
+//! the direct operators (sums of the closed-form influence coefficients, independent of the
+//! FFT path).
 
-use halfspace::influence::{normal_influence, tangential_influence};
+mod support;
+
+use halfspace::influence::tangential_influence;
+use halfspace::operator::Update;
 use halfspace::*;
+use support::ball_on_soft;
 
 #[test]
 fn coupling_coefficient_is_boussinesq_radial_displacement() {
@@ -31,17 +36,6 @@ fn coupling_coefficient_is_boussinesq_radial_displacement() {
             a.yn
         );
     }
-}
-
-fn ball_on_soft(n: usize) -> (Grid, Material, Vec<f64>) {
-    // A rigid sphere (R = 10 mm) pressed into an elastic body (E = 1 GPa, ν = 0.2: K = −0.3).
-    let m = Material::combine(Body::Rigid, Body::elastic(1e9, 0.2).unwrap()).unwrap();
-    let shape = GapShape::Quadratic { a: 50.0, b: 50.0 };
-    let h = shape.hertz(&m, NormalLoad::Force(50.0)).unwrap();
-    let d = 2.6 * h.a / n as f64;
-    let grid = Grid::centred(n, n, d, d, 0.0, 0.0).unwrap();
-    let gap = shape.sample(&grid).unwrap();
-    (grid, m, gap)
 }
 
 #[test]
@@ -90,30 +84,27 @@ fn coupled_indentation_satisfies_its_equations() {
             assert!(px[k] <= 1e-9 * pmax, "p_x = {} at x = {x}", px[k]);
         }
     }
-    // The equations by direct sums: normal e = h − δ + A_nn p_n + A_nx p_x + A_ny p_y = 0 in
+    // The equations by the direct operators: normal e = h − δ + A_nn p_n + A_nx p_x + A_ny p_y = 0 in
     // contact, ≥ 0 outside; tangential S = A_xx p_x + A_xy p_y + A_xn p_n (and y) vanishing in
     // adhesion, opposite to p_t with |p_t| = μ p_n in slip. Tolerances: 1e-5 of the approach
     // and of the largest |S| (NormCG and Gauss–Seidel stop at 1e-8 / 1e-7 relative changes).
     let n = grid.len();
-    let (dx, dy) = (grid.dx, grid.dy);
-    let mut e = vec![0.0; n];
-    let mut sx = vec![0.0; n];
-    let mut sy = vec![0.0; n];
-    for i in 0..n {
-        let (xi, yi) = grid.centre(i);
-        let (mut en, mut ex, mut ey) = (0.0, 0.0, 0.0);
-        for j in 0..n {
-            let (xj, yj) = grid.centre(j);
-            let t = tangential_influence(&m, xi - xj, yi - yj, dx, dy);
-            en += normal_influence(&m, xi - xj, yi - yj, dx, dy) * pn[j]
-                - t.xn * px[j]
-                - t.yn * py[j];
-            ex += t.xx * px[j] + t.xy * py[j] + t.xn * pn[j];
-            ey += t.xy * px[j] + t.yy * py[j] + t.yn * pn[j];
-        }
-        e[i] = gap[i] - sol.normal.approach + en;
-        sx[i] = ex;
-        sy[i] = ey;
+    let mut normal_op = DirectInfluence::new(grid, m).unwrap();
+    let mut tangential_op = DirectTangentialInfluence::new(grid, m).unwrap();
+    let (mut e, mut un) = (vec![0.0; n], vec![0.0; n]);
+    normal_op.apply(pn, &mut e);
+    tangential_op.normal_from_traction((px, py), &mut un);
+    for ((e, h), u) in e.iter_mut().zip(&gap).zip(&un) {
+        *e += h - sol.normal.approach + u;
+    }
+    let (mut sx, mut sy) = (vec![0.0; n], vec![0.0; n]);
+    let (mut cx, mut cy) = (vec![0.0; n], vec![0.0; n]);
+    let direct = TangentialKernel::Direct;
+    tangential_op.traction_product(direct, Update::Set, (px, py), (&mut sx, &mut sy));
+    tangential_op.pressure_product(direct, Update::Set, pn, (&mut cx, &mut cy));
+    for k in 0..n {
+        sx[k] += cx[k];
+        sy[k] += cy[k];
     }
     let delta = sol.normal.approach;
     let smax = sx.iter().chain(&sy).fold(0.0f64, |m, v| m.max(v.abs()));

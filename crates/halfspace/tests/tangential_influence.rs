@@ -1,37 +1,22 @@
 //! Tangential and coupling influence coefficients against an independent quadrature of
-//! Cerruti's and Boussinesq's point-load solutions, and the FFT operator against direct sums.
+//! Cerruti's and Boussinesq's point-load solutions, and the FFT operator against the direct
+//! operator's sums.
 
-use halfspace::convolution::FftConvolution;
-use halfspace::influence::{
-    Component, circulant_from_centred, tangential_influence, tangential_offset_tables,
+mod support;
+
+use halfspace::influence::tangential_influence;
+use halfspace::operator::Update;
+use halfspace::{
+    Body, DirectTangentialInfluence, FftTangentialInfluence, Grid, Material,
+    TangentialInfluenceOperator, TangentialKernel,
 };
-use halfspace::{Body, Grid, Material};
+use support::gauss_legendre;
 
 /// 24-point Gauss–Legendre product rule over the element [−dx/2, dx/2] × [−dy/2, dy/2]
 /// of the point-load density f(X, Y) at offset (ox, oy).
 fn quadrature(f: impl Fn(f64, f64) -> f64, ox: f64, oy: f64, dx: f64, dy: f64) -> f64 {
     // Nodes and weights by Newton on the Legendre polynomial (independent of the primitives).
-    let n = 24;
-    let mut nodes = Vec::new();
-    for i in 1..=n {
-        let mut x = (std::f64::consts::PI * (i as f64 - 0.25) / (n as f64 + 0.5)).cos();
-        let mut dp = 0.0;
-        for _ in 0..100 {
-            let (mut p0, mut p1) = (1.0, x);
-            for k in 2..=n {
-                let p2 = ((2 * k - 1) as f64 * x * p1 - (k - 1) as f64 * p0) / k as f64;
-                p0 = p1;
-                p1 = p2;
-            }
-            dp = n as f64 * (x * p1 - p0) / (x * x - 1.0);
-            let step = p1 / dp;
-            x -= step;
-            if step.abs() < 1e-16 {
-                break;
-            }
-        }
-        nodes.push((x, 2.0 / ((1.0 - x * x) * dp * dp)));
-    }
+    let nodes = gauss_legendre(24);
     let mut s = 0.0;
     for &(u, wu) in &nodes {
         for &(v, wv) in &nodes {
@@ -119,32 +104,30 @@ fn own_element_values() {
 #[test]
 fn fft_operator_matches_direct_sums_with_shifted_kernels() {
     // The steady-rolling kernel C_v (observation points shifted by δq) is not symmetric;
-    // the FFT product must still equal the direct double sum.
+    // the FFT product must still equal the direct double sum of the direct operator.
     let m = Material::from_combined(82e9, 0.28).unwrap();
     for (nx, ny, dx, dy) in [(7usize, 1usize, 4e-5, 0.2), (5, 4, 1e-3, 1.5e-3)] {
         let grid = Grid::centred(nx, ny, dx, dy, 0.0, 0.0).unwrap();
-        for comp in [Component::Xx, Component::Xy, Component::Yy] {
-            let t = tangential_offset_tables(&m, &grid, 0.7 * dx, &[comp]);
-            let mut conv = FftConvolution::new(nx, ny);
-            let spec = conv.kernel_spectrum(&circulant_from_centred(&grid, &t[0]));
-            let p: Vec<f64> = (0..nx * ny)
-                .map(|k| (k as f64 * 0.37).sin() + 0.3)
-                .collect();
-            let mut u = vec![0.0; nx * ny];
-            conv.apply(&spec, &p, &mut u);
-            for i in 0..nx * ny {
-                let (xi, yi) = grid.centre(i);
-                let mut s = 0.0;
-                for (j, pj) in p.iter().enumerate() {
-                    let (xj, yj) = grid.centre(j);
-                    s += tangential_influence(&m, xi - xj + 0.7 * dx, yi - yj, dx, dy).get(comp)
-                        * pj;
-                }
+        let kernel = TangentialKernel::Shifted(0.7 * dx);
+        let mut fast = FftTangentialInfluence::new(grid, &m).unwrap();
+        let mut slow = DirectTangentialInfluence::new(grid, m).unwrap();
+        fast.prepare(kernel);
+        let p: Vec<f64> = (0..nx * ny)
+            .map(|k| (k as f64 * 0.37).sin() + 0.3)
+            .collect();
+        let q: Vec<f64> = (0..nx * ny)
+            .map(|k| (k as f64 * 0.91).cos() - 0.2)
+            .collect();
+        let n = nx * ny;
+        let (mut ux, mut uy) = (vec![0.0; n], vec![0.0; n]);
+        let (mut vx, mut vy) = (vec![0.0; n], vec![0.0; n]);
+        fast.traction_product(kernel, Update::Set, (&p, &q), (&mut ux, &mut uy));
+        slow.traction_product(kernel, Update::Set, (&p, &q), (&mut vx, &mut vy));
+        for i in 0..n {
+            for (a, b) in [(ux[i], vx[i]), (uy[i], vy[i])] {
                 assert!(
-                    (u[i] - s).abs() <= 1e-12 * s.abs().max(1e-14),
-                    "{comp:?} {i}: {} {}",
-                    u[i],
-                    s
+                    (a - b).abs() <= 1e-12 * b.abs().max(1e-14),
+                    "{nx}x{ny} {i}: {a} {b}"
                 );
             }
         }

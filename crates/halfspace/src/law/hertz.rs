@@ -1,6 +1,6 @@
 //! Hertz's elliptic point contact as a force law (references.md §C4.1).
 
-use super::{ContactLaw, LawOutput, check_columns};
+use super::{ContactLaw, LawOutput, semi_ellipse_profile, single_column_approach};
 use crate::error::{ContactError, positive};
 use crate::hertz::Hertz;
 use crate::material::Material;
@@ -73,9 +73,7 @@ impl ContactLaw for HertzPoint {
         column_force: &mut [f64],
         _tangent: bool,
     ) -> Result<LawOutput, ContactError> {
-        check_columns(1, column_gap, column_force)?;
-        crate::error::finite("approach", delta)?;
-        let delta = delta - column_gap.first().copied().unwrap_or(0.0);
+        let delta = single_column_approach(delta, column_gap, column_force)?;
         if delta <= 0.0 {
             column_force.fill(0.0);
             self.last_force = 0.0;
@@ -108,13 +106,7 @@ impl ContactLaw for HertzPoint {
 
     /// p(ξ, 0) = p₀ √(1 − ξ²/a²) of the last evaluation, 41 points over \[−1.25a, 1.25a\].
     fn centreline_pressure(&self, out: &mut Vec<(f64, f64)>) {
-        out.clear();
         let (a, _, p0) = self.at_force(self.last_force);
-        if a > 0.0 {
-            for i in 0..=40 {
-                let xi = 1.25 * a * (i as f64 / 20.0 - 1.0);
-                out.push((xi, p0 * (1.0 - (xi / a).powi(2)).max(0.0).sqrt()));
-            }
-        }
+        semi_ellipse_profile(a, p0, out);
     }
 }

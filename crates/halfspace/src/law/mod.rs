@@ -9,6 +9,7 @@
 //! | law | F(δ) | k | W | pressure field |
 //! |---|---|---|---|---|
 //! | [`HertzPoint`] | C δ^{3/2} (references.md §C4.1) | 1.5 F/δ | 0.4 F δ | `None` |
+//! | [`HertzLine`] | L F'(δ), δ(F') logarithmic to a reference depth d (references.md §C4.1) | L/(dδ/dF') | L (F'δ − ∫δ dF') | `None` |
 //! | [`BemLaw`] | ΔA Σ p_e, NormCG at prescribed δ | sensitivity solve | ½ ΔA Σ p_e u_e | the grid and p |
 //!
 //! Decorators and constraints:
@@ -52,11 +53,13 @@
 mod bem;
 mod damped;
 mod hertz;
+mod hertz_line;
 mod rigid;
 
 pub use bem::{BemLaw, BemOptions, TangentPolicy};
 pub use damped::{Damped, DampingModel};
 pub use hertz::HertzPoint;
+pub use hertz_line::HertzLine;
 pub use rigid::RigidConstraint;
 
 use crate::error::ContactError;
@@ -153,6 +156,30 @@ impl ContactModel {
         match self {
             ContactModel::Law(law) => Some(law.as_mut()),
             ContactModel::Rigid(_) => None,
+        }
+    }
+}
+
+/// The approach δ − c₀ of a law with one column (a point or line contact), after checking
+/// the column slices and that δ is finite.
+pub(crate) fn single_column_approach(
+    delta: f64,
+    column_gap: &[f64],
+    column_force: &[f64],
+) -> Result<f64, ContactError> {
+    check_columns(1, column_gap, column_force)?;
+    crate::error::finite("approach", delta)?;
+    Ok(delta - column_gap.first().copied().unwrap_or(0.0))
+}
+
+/// Hertz's semi-elliptic profile p(ξ) = p₀ √(1 − ξ²/a²) at 41 points over \[−1.25a, 1.25a\]
+/// into `out` (empty for a = 0).
+pub(crate) fn semi_ellipse_profile(a: f64, p0: f64, out: &mut Vec<(f64, f64)>) {
+    out.clear();
+    if a > 0.0 {
+        for i in 0..=40 {
+            let xi = 1.25 * a * (i as f64 / 20.0 - 1.0);
+            out.push((xi, p0 * (1.0 - (xi / a).powi(2)).max(0.0).sqrt()));
         }
     }
 }

@@ -10,8 +10,9 @@
 //! i.e. minimise ½ pᵀA p + pᵀ(h − δ) subject to p ≥ 0. Each iteration is a preconditioned
 //! conjugate-gradient step restricted to C, followed by a projection:
 //!
-//! 1. r = −e on C; z = M r masked to C, with M the FFT preconditioner (the convolution
-//!    whose spectrum is the reciprocal of A's, an approximate inverse of A);
+//! 1. r = −e on C; z = M r masked to C, with M the operator's preconditioner (for the FFT
+//!    operator the convolution whose spectrum is the reciprocal of A's, an approximate
+//!    inverse of A);
 //! 2. Polak–Ribière direction v = z + β v, β = max(0, zᵀ(r − r_prev)/(z_prevᵀ r_prev)),
 //!    restarted (β = 0) whenever C changed;
 //! 3. q = A v, α = rᵀv / vᵀq, p ← p + α v, u ← u + α q;
@@ -33,15 +34,19 @@
 //! contact set: solve A_CC x = 1_C (unit increase of the approach, contact set frozen) by
 //! preconditioned CG; then dF_n/dδ = ΔA Σ x. Exact for a set that does not change under a
 //! small change of δ, i.e. the one-sided derivative of the discrete problem.
+//!
+//! **Operator.** Every product with A, the sparse column updates and the preconditioner go
+//! through [`InfluenceOperator`]: [`NormalSolver::new`] uses [`FftInfluence`],
+//! [`NormalSolver::with_operator`] any implementation (e.g. the direct O(n²) oracle
+//! [`crate::DirectInfluence`]).
 
 mod active_set;
 mod sensitivity;
 
-use crate::convolution::{FftConvolution, KernelSpectrum};
 use crate::error::{ContactError, positive};
 use crate::grid::Grid;
-use crate::influence::circulant_kernel;
 use crate::material::Material;
+use crate::operator::{FftInfluence, InfluenceOperator};
 use crate::solution::NormalSolution;
 use active_set::{active_mean, initial_force_guess, mask, mean_over, remove_active_mean, rescale};
 
@@ -140,20 +145,15 @@ enum WarmStart {
     Solution,
 }
 
-/// Solver of the normal contact problem on one grid and material pair.
+/// Solver of the normal contact problem on one grid and material pair, generic over the
+/// influence operator `A` (default: the FFT convolution [`FftInfluence`]).
 ///
-/// Owns the FFT plans, the spectra of A_nn and of the preconditioner (computed once), and
-/// all work vectors; repeated solves (time stepping) allocate only their result, and start
-/// from the previous pressure when `warm_start` is set.
+/// Owns the operator (for the FFT one: plans and the spectra of A_nn and of the
+/// preconditioner, computed once) and all work vectors; repeated solves (time stepping)
+/// allocate only their result, and start from the previous pressure when `warm_start` is set.
 #[derive(Debug)]
-pub struct NormalSolver {
-    grid: Grid,
-    material: Material,
-    conv: FftConvolution,
-    influence: KernelSpectrum,
-    /// The influence kernel in circulant order (for exact sparse updates of u).
-    kernel: Vec<f64>,
-    preconditioner: KernelSpectrum,
+pub struct NormalSolver<A: InfluenceOperator = FftInfluence> {
+    operator: A,
     work: Workspace,
     /// What the workspace holds for a warm start.
     warm: WarmStart,
@@ -164,39 +164,41 @@ pub struct NormalSolver {
 impl NormalSolver {
     /// Tabulate the influence kernel, plan the FFTs and build the preconditioner.
     pub fn new(grid: Grid, material: Material) -> Result<Self, ContactError> {
-        let grid = Grid::new(grid.nx, grid.ny, grid.dx, grid.dy, grid.x0, grid.y0)?;
-        positive("G", material.g)?;
-        let conv = FftConvolution::new(grid.nx, grid.ny);
-        let kernel = circulant_kernel(&material, &grid);
-        let influence = conv.kernel_spectrum(&kernel);
-        let preconditioner = influence
-            .reciprocal(conv.normalisation())
-            .ok_or_else(|| ContactError::Fft("influence spectrum has a zero coefficient".into()))?;
+        Self::with_operator(FftInfluence::new(grid, &material)?)
+    }
+}
+
+impl<A: InfluenceOperator> NormalSolver<A> {
+    /// A solver over any influence operator (its grid and material are the problem's).
+    pub fn with_operator(operator: A) -> Result<Self, ContactError> {
+        positive("G", operator.material().g)?;
+        let n = operator.grid().len();
         Ok(NormalSolver {
-            grid,
-            material,
-            conv,
-            influence,
-            kernel,
-            preconditioner,
-            work: Workspace::new(grid.len()),
+            operator,
+            work: Workspace::new(n),
             warm: WarmStart::Cold,
             previous_sensitivity: None,
             convolutions: 0,
         })
     }
 
+    /// The influence operator.
+    pub fn operator(&self) -> &A {
+        &self.operator
+    }
+
     /// The grid.
     pub fn grid(&self) -> &Grid {
-        &self.grid
+        self.operator.grid()
     }
 
     /// The combined material.
     pub fn material(&self) -> &Material {
-        &self.material
+        self.operator.material()
     }
 
-    /// Number of FFT convolutions done so far (statistics for benchmarks).
+    /// Number of operator products and preconditioner applications (FFT convolutions for
+    /// the FFT operator) done so far (statistics for benchmarks).
     pub fn convolutions(&self) -> usize {
         self.convolutions
     }
@@ -217,17 +219,17 @@ impl NormalSolver {
         Ok(())
     }
 
-    /// Surface displacement u = A p for a given pressure field (one FFT convolution).
+    /// Surface displacement u = A p for a given pressure field (one operator product).
     pub fn displacement(&mut self, pressure: &[f64], out: &mut [f64]) -> Result<(), ContactError> {
         self.check_len("pressure", pressure.len())?;
         self.check_len("displacement", out.len())?;
-        self.conv.apply(&self.influence, pressure, out);
+        self.operator.apply(pressure, out);
         self.convolutions += 1;
         Ok(())
     }
 
     fn check_len(&self, name: &'static str, found: usize) -> Result<(), ContactError> {
-        self.grid.check_len(name, found)
+        self.grid().check_len(name, found)
     }
 
     /// Solve the normal contact problem for the undeformed gap `gap` (per element, \[m\];
@@ -268,7 +270,7 @@ impl NormalSolver {
             && f == 0.0
         {
             let hmin = gap.iter().copied().fold(f64::INFINITY, f64::min);
-            return Ok(NormalSolution::empty(self.grid, gap, hmin));
+            return Ok(NormalSolution::empty(*self.grid(), gap, hmin));
         }
         let warm = if options.warm_start {
             self.warm
@@ -303,8 +305,9 @@ impl NormalSolver {
         warm: WarmStart,
         options: &SolverOptions,
     ) -> Result<NormalSolution, ContactError> {
-        let area = self.grid.element_area();
-        let n = self.grid.len();
+        let grid = *self.grid();
+        let area = grid.element_area();
+        let n = grid.len();
         let force_mode = target_force.is_some();
         let target_sum = target_force.map(|f| f / area);
 
@@ -318,8 +321,8 @@ impl NormalSolver {
             if self.work.p.iter().sum::<f64>() <= 0.0 {
                 u_valid = false;
                 initial_force_guess(
-                    &self.grid,
-                    &self.material,
+                    &grid,
+                    self.operator.material(),
                     gap,
                     sum * area,
                     &mut self.work.p,
@@ -351,7 +354,7 @@ impl NormalSolver {
             }
         }
         if !self.work.active.iter().any(|&a| a) {
-            return Ok(NormalSolution::empty(self.grid, gap, approach));
+            return Ok(NormalSolution::empty(grid, gap, approach));
         }
 
         let mut restart = true;
@@ -368,8 +371,7 @@ impl NormalSolver {
                     *r = if a { approach - h - u } else { 0.0 };
                 }
             }
-            self.conv
-                .apply(&self.preconditioner, &self.work.r, &mut self.work.z);
+            self.operator.precondition(&self.work.r, &mut self.work.z);
             self.convolutions += 1;
             let w = &mut self.work;
             mask(&mut w.z, &w.active);
@@ -393,8 +395,7 @@ impl NormalSolver {
             w.r_prev.copy_from_slice(&w.r);
             rz_prev = rz;
             // 3. step along v.
-            self.conv
-                .apply(&self.influence, &self.work.v, &mut self.work.q);
+            self.operator.apply(&self.work.v, &mut self.work.q);
             self.convolutions += 1;
             let w = &mut self.work;
             let (mut vq, mut rv) = (0.0, 0.0);
@@ -469,41 +470,24 @@ impl NormalSolver {
     }
 
     /// Bring u = A p up to date after the projection set the clipped elements to zero:
-    /// u += A Δp with Δp the (few) added pressures, summed directly from the kernel table
-    /// when that is clearly cheaper than a convolution (count ≤ 2 + log₂N: N multiply-adds per
-    /// element against ~N log₂N for the padded FFTs), else by FFT.
+    /// u += A Δp with Δp the (few) added pressures, summed column by column
+    /// ([`InfluenceOperator::add_columns`]) when that is clearly cheaper than a convolution
+    /// (count ≤ 2 + log₂N: N multiply-adds per element against ~N log₂N for the padded FFTs),
+    /// else by a full product.
     fn correct_for_clipping(&mut self) {
-        let n = self.grid.len();
+        let n = self.grid().len();
         let limit = 2 + (usize::BITS - n.leading_zeros()) as usize;
         if self.work.clipped.len() > limit {
             self.exact_displacement();
             return;
         }
-        let (nx, ny) = (self.grid.nx, self.grid.ny);
-        let (mx, my) = (2 * nx, 2 * ny);
-        let w = &mut self.work;
-        for &(j, dp) in &w.clipped {
-            let (jx, jy) = (j % nx, j / nx);
-            for iy in 0..ny {
-                let dj = (iy + my - jy) % my;
-                let row = &self.kernel[dj * mx..(dj + 1) * mx];
-                let u_row = &mut w.u[iy * nx..(iy + 1) * nx];
-                // Offsets ix − jx < 0 wrap to the end of the circulant row.
-                let (left, right) = u_row.split_at_mut(jx);
-                for (u, k) in left.iter_mut().zip(&row[mx - jx..]) {
-                    *u += k * dp;
-                }
-                for (u, k) in right.iter_mut().zip(row) {
-                    *u += k * dp;
-                }
-            }
-        }
+        self.operator
+            .add_columns(&self.work.clipped, &mut self.work.u);
     }
 
     /// u = A p from scratch (removes drift of the incremental updates).
     fn exact_displacement(&mut self) {
-        self.conv
-            .apply(&self.influence, &self.work.p, &mut self.work.u);
+        self.operator.apply(&self.work.p, &mut self.work.u);
         self.convolutions += 1;
     }
 
@@ -528,7 +512,7 @@ impl NormalSolver {
         residual: f64,
         converged: bool,
     ) -> NormalSolution {
-        let g = self.grid;
+        let g = *self.grid();
         let w = &self.work;
         let area = g.element_area();
         let mut force_sum = 0.0;

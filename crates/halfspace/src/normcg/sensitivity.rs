@@ -5,8 +5,9 @@ use super::NormalSolver;
 use super::active_set::{mask, masked_dot};
 use crate::error::ContactError;
 use crate::linalg::dot;
+use crate::operator::InfluenceOperator;
 
-impl NormalSolver {
+impl<A: InfluenceOperator> NormalSolver<A> {
     /// dF_n/dδ from A_CC x = 1_C by preconditioned CG (see the module documentation).
     pub(super) fn sensitivity(
         &mut self,
@@ -14,8 +15,8 @@ impl NormalSolver {
         tol: f64,
         max_iter: usize,
     ) -> Result<(f64, usize), ContactError> {
-        let n = self.grid.len();
-        let area = self.grid.element_area();
+        let n = self.grid().len();
+        let area = self.grid().element_area();
         let w = &mut self.work;
         w.active.copy_from_slice(in_contact);
         // x in w.p's place would destroy the solution; use r/z/v/q and u as scratch, x in r_prev.
@@ -28,8 +29,7 @@ impl NormalSolver {
             _ => x.fill(0.0),
         }
         // r = 1 − A x on C.
-        self.conv
-            .apply(&self.influence, &self.work.r_prev, &mut self.work.q);
+        self.operator.apply(&self.work.r_prev, &mut self.work.q);
         self.convolutions += 1;
         let w = &mut self.work;
         let count = w.active.iter().filter(|&&a| a).count() as f64;
@@ -52,8 +52,7 @@ impl NormalSolver {
                 });
             }
             iterations += 1;
-            self.conv
-                .apply(&self.preconditioner, &self.work.r, &mut self.work.z);
+            self.operator.precondition(&self.work.r, &mut self.work.z);
             self.convolutions += 1;
             let w = &mut self.work;
             mask(&mut w.z, &w.active);
@@ -63,8 +62,7 @@ impl NormalSolver {
                 w.v[i] = w.z[i] + beta * w.v[i];
             }
             rz_prev = rz;
-            self.conv
-                .apply(&self.influence, &self.work.v, &mut self.work.q);
+            self.operator.apply(&self.work.v, &mut self.work.q);
             self.convolutions += 1;
             let w = &mut self.work;
             let alpha = rz / masked_dot(&w.v, &w.q, &w.active);

@@ -61,21 +61,29 @@
 //! [`TangentialSolver::normal_displacement`]; [`crate::coupled`] alternates the two solves
 //! (Panagiotopoulos' process). Friction is Coulomb with a constant μ.
 //!
-//! Files: `kernels.rs` (influence tables and spectra of the operators), `sweep.rs` (the
-//! Gauss–Seidel sweep and the element solve), `newton.rs` (prescribed forces),
-//! `anderson.rs` (acceleration of the sweeps).
+//! **Operator.** All products with the kernels A, A − A_v and A_v, the dense column updates
+//! and the coupling terms go through [`TangentialInfluenceOperator`]:
+//! [`TangentialSolver::new`] uses the FFT operator [`FftTangentialInfluence`],
+//! [`TangentialSolver::with_operator`] any implementation (e.g. the direct O(n²) oracle
+//! [`crate::DirectTangentialInfluence`]).
+//!
+//! Files: `sweep.rs` (the Gauss–Seidel sweep and the element solve), `newton.rs`
+//! (prescribed forces), `anderson.rs` (acceleration of the sweeps), `coupling.rs` (the
+//! pressure's tangential displacement for K ≠ 0); the kernels are in
+//! [`crate::operator::tangential`].
 
 mod anderson;
-mod kernels;
+mod coupling;
 mod newton;
 mod sweep;
 
-use crate::convolution::{FftConvolution, KernelSpectrum};
 use crate::error::{ContactError, finite, positive};
 use crate::grid::Grid;
-use crate::influence::{Component, circulant_from_centred, tangential_offset_tables};
 use crate::material::Material;
-use kernels::{COMPONENTS, Coupling, KernelSet, Operator, sub};
+use crate::operator::{
+    FftTangentialInfluence, TangentialInfluenceOperator, TangentialKernel, Update,
+};
+use coupling::Coupling;
 
 /// State of one element after a tangential solve.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -229,31 +237,22 @@ pub struct TangentialSolution {
     pub residual: f64,
 }
 
-/// Solver of tangential contact problems on one grid and material pair. Owns the kernels
-/// (computed once, the steady and shifted ones on first use), FFT plans and work vectors;
-/// repeated solves allocate only their result.
+/// Solver of tangential contact problems on one grid and material pair, generic over the
+/// tangential influence operator `T` (default: the FFT operator [`FftTangentialInfluence`],
+/// which tabulates the kernels once, the steady and shifted ones on first use, and plans the
+/// FFTs once). Owns the work vectors; repeated solves allocate only their result.
 #[derive(Debug)]
-pub struct TangentialSolver {
-    grid: Grid,
-    material: Material,
-    conv: FftConvolution,
-    direct: KernelSet,
-    steady: Option<KernelSet>,
-    shifted: Option<(f64, [KernelSpectrum; 3])>,
+pub struct TangentialSolver<T: TangentialInfluenceOperator = FftTangentialInfluence> {
+    operator: T,
     px: Vec<f64>,
     py: Vec<f64>,
     sx: Vec<f64>,
     sy: Vec<f64>,
     bx: Vec<f64>,
     by: Vec<f64>,
-    tmp: Vec<f64>,
     slipping: Vec<bool>,
     bound: Vec<f64>,
     has_previous: bool,
-    /// Coupling kernels A_xn, A_yn (K ≠ 0 only): direct, steady (A − A_v at δx), shifted.
-    coupling: Option<[KernelSpectrum; 2]>,
-    coupling_steady: Option<[KernelSpectrum; 2]>,
-    coupling_shifted: Option<(f64, [KernelSpectrum; 2])>,
     /// The pressure of the current solve and of the previous transient step.
     pn: Vec<f64>,
     pn_previous: Option<Vec<f64>>,
@@ -263,43 +262,29 @@ pub struct TangentialSolver {
 }
 
 impl TangentialSolver {
-    /// Tabulate A_xx, A_xy, A_yy for `grid` and plan the FFTs.
+    /// Tabulate A_xx, A_xy, A_yy (and A_xn, A_yn for K ≠ 0) for `grid` and plan the FFTs.
     pub fn new(grid: Grid, material: Material) -> Result<Self, ContactError> {
-        let grid = Grid::new(grid.nx, grid.ny, grid.dx, grid.dy, grid.x0, grid.y0)?;
-        positive("G", material.g)?;
-        let conv = FftConvolution::new(grid.nx, grid.ny);
-        let t = tangential_offset_tables(&material, &grid, 0.0, &COMPONENTS);
-        let tables: [Vec<f64>; 3] = t.try_into().expect("three components");
-        let direct = KernelSet::new(&conv, &grid, tables);
-        let n = grid.len();
-        let coupling = (material.k != 0.0).then(|| {
-            let t =
-                tangential_offset_tables(&material, &grid, 0.0, &[Component::Xn, Component::Yn]);
-            [
-                conv.kernel_spectrum(&circulant_from_centred(&grid, &t[0])),
-                conv.kernel_spectrum(&circulant_from_centred(&grid, &t[1])),
-            ]
-        });
+        Self::with_operator(FftTangentialInfluence::new(grid, &material)?)
+    }
+}
+
+impl<T: TangentialInfluenceOperator> TangentialSolver<T> {
+    /// A solver over any tangential influence operator (its grid and material are the
+    /// problem's).
+    pub fn with_operator(operator: T) -> Result<Self, ContactError> {
+        positive("G", operator.material().g)?;
+        let n = operator.grid().len();
         Ok(TangentialSolver {
-            grid,
-            material,
-            conv,
-            direct,
-            steady: None,
-            shifted: None,
+            operator,
             px: vec![0.0; n],
             py: vec![0.0; n],
             sx: vec![0.0; n],
             sy: vec![0.0; n],
             bx: vec![0.0; n],
             by: vec![0.0; n],
-            tmp: vec![0.0; n],
             slipping: vec![false; n],
             bound: vec![0.0; n],
             has_previous: false,
-            coupling,
-            coupling_steady: None,
-            coupling_shifted: None,
             pn: vec![0.0; n],
             pn_previous: None,
             cnx: vec![0.0; n],
@@ -307,9 +292,14 @@ impl TangentialSolver {
         })
     }
 
+    /// The influence operator.
+    pub fn operator(&self) -> &T {
+        &self.operator
+    }
+
     /// The grid.
     pub fn grid(&self) -> &Grid {
-        &self.grid
+        self.operator.grid()
     }
 
     /// Forget the previous tractions (the next solve starts from zero).
@@ -318,7 +308,7 @@ impl TangentialSolver {
     }
 
     pub(super) fn check_len(&self, name: &'static str, found: usize) -> Result<(), ContactError> {
-        self.grid.check_len(name, found)
+        self.operator.grid().check_len(name, found)
     }
 
     /// Use `pressure` as the previous step's pressure p_n' in the coupling term of the next
@@ -342,16 +332,8 @@ impl TangentialSolver {
         self.check_len("traction_x", traction_x.len())?;
         self.check_len("traction_y", traction_y.len())?;
         self.check_len("displacement", out.len())?;
-        match &self.coupling {
-            None => out.fill(0.0),
-            Some([kxn, kyn]) => {
-                self.conv.apply(kxn, traction_x, out);
-                self.conv.apply(kyn, traction_y, &mut self.tmp);
-                for (o, t) in out.iter_mut().zip(&self.tmp) {
-                    *o = -(*o + t);
-                }
-            }
-        }
+        self.operator
+            .normal_from_traction((traction_x, traction_y), out);
         Ok(())
     }
 
@@ -372,7 +354,7 @@ impl TangentialSolver {
             force += p;
         }
         self.pn.copy_from_slice(pressure);
-        let area = self.grid.element_area();
+        let area = self.grid().element_area();
         if force <= 0.0 {
             return Err(ContactError::NoContact {
                 reason: "the pressure is zero everywhere",
@@ -383,7 +365,7 @@ impl TangentialSolver {
 
     /// Rigid part W of the shift for a motion.
     fn set_rigid(&mut self, delta_q: f64, c: Creepages, shift: (f64, f64)) {
-        let g = self.grid;
+        let g = *self.grid();
         for iy in 0..g.ny {
             let y = g.y(iy);
             for ix in 0..g.nx {
@@ -412,7 +394,7 @@ impl TangentialSolver {
                 finite("shift_x", wx)?;
                 finite("shift_y", wy)?;
                 self.set_rigid(0.0, Creepages::default(), (wx, wy));
-                let (its, res) = self.solve_current(Operator::Direct, options)?;
+                let (its, res) = self.solve_current(TangentialKernel::Direct, options)?;
                 Ok(self.solution(0.0, Creepages::default(), (wx, wy), its, 0, res))
             }
             ShiftLoad::Forces { fx, fy } => {
@@ -420,7 +402,7 @@ impl TangentialSolver {
                 let (param, its, newton, res) =
                     self.newton(target, limit, options, |s, p, opts| {
                         s.set_rigid(0.0, Creepages::default(), (p[0], p[1]));
-                        s.solve_current(Operator::Direct, opts)
+                        s.solve_current(TangentialKernel::Direct, opts)
                     })?;
                 Ok(self.solution(
                     0.0,
@@ -444,14 +426,14 @@ impl TangentialSolver {
     ) -> Result<TangentialSolution, ContactError> {
         options.validate()?;
         let limit = self.set_bound(pressure, mu)?;
-        self.ensure_steady();
+        self.operator.prepare(TangentialKernel::Steady);
         self.prepare_coupling(Coupling::Steady);
-        let dq = self.grid.dx;
+        let dq = self.grid().dx;
         match load {
             RollingLoad::Creepages(c) => {
                 c.validate()?;
                 self.set_rigid(dq, c, (0.0, 0.0));
-                let (its, res) = self.solve_current(Operator::Steady, options)?;
+                let (its, res) = self.solve_current(TangentialKernel::Steady, options)?;
                 Ok(self.solution(dq, c, (0.0, 0.0), its, 0, res))
             }
             RollingLoad::Forces { fx, fy, phi } => {
@@ -465,7 +447,7 @@ impl TangentialSolver {
                             phi,
                         };
                         s.set_rigid(dq, c, (0.0, 0.0));
-                        s.solve_current(Operator::Steady, opts)
+                        s.solve_current(TangentialKernel::Steady, opts)
                     })?;
                 let c = Creepages {
                     xi: param[0],
@@ -506,29 +488,34 @@ impl TangentialSolver {
         finite("shift_x", motion.shift.0)?;
         finite("shift_y", motion.shift.1)?;
         if motion.delta_q > 0.0 {
-            self.ensure_shifted(motion.delta_q);
-            self.prepare_coupling(Coupling::Shifted);
+            self.operator
+                .prepare(TangentialKernel::Shifted(motion.delta_q));
+            self.prepare_coupling(Coupling::Shifted(motion.delta_q));
         } else {
             // A shift step: the pressure's own tangential displacement changes by
             // A_tn (p_n − p_n').
             self.prepare_coupling(Coupling::Direct);
-            if let (Some(prev), Some([kx, ky])) = (&self.pn_previous, &self.coupling) {
-                self.conv.apply(kx, prev, &mut self.tmp);
-                sub(&mut self.cnx, &self.tmp);
-                self.conv.apply(ky, prev, &mut self.tmp);
-                sub(&mut self.cny, &self.tmp);
+            if let Some(prev) = &self.pn_previous
+                && self.operator.material().k != 0.0
+            {
+                self.operator.pressure_product(
+                    TangentialKernel::Direct,
+                    Update::Subtract,
+                    prev,
+                    (&mut self.cnx, &mut self.cny),
+                );
             }
             self.pn_previous = None;
         }
         self.set_rigid(motion.delta_q, motion.creepages, motion.shift);
         // b −= A_v p'  (A_v = A when δq = 0).
-        self.subtract_previous(motion.delta_q > 0.0, previous.0, previous.1);
+        self.subtract_previous(motion.delta_q, previous.0, previous.1);
         if !self.has_previous || !options.warm_start {
             self.px.copy_from_slice(previous.0);
             self.py.copy_from_slice(previous.1);
             self.has_previous = true;
         }
-        let (its, res) = self.solve_current(Operator::Direct, options)?;
+        let (its, res) = self.solve_current(TangentialKernel::Direct, options)?;
         Ok(self.solution(motion.delta_q, motion.creepages, motion.shift, its, 0, res))
     }
 
@@ -554,8 +541,8 @@ impl TangentialSolver {
         positive("delta_q", delta_q)?;
         finite("spin", phi)?;
         let target = self.check_force_target(forces.0, forces.1, limit)?;
-        self.ensure_shifted(delta_q);
-        self.prepare_coupling(Coupling::Shifted);
+        self.operator.prepare(TangentialKernel::Shifted(delta_q));
+        self.prepare_coupling(Coupling::Shifted(delta_q));
         let (prev_x, prev_y) = (previous.0.to_vec(), previous.1.to_vec());
         let (param, its, newton, res) = self.newton(target, limit, options, |s, p, opts| {
             let c = Creepages {
@@ -564,8 +551,8 @@ impl TangentialSolver {
                 phi,
             };
             s.set_rigid(delta_q, c, (0.0, 0.0));
-            s.subtract_previous(true, &prev_x, &prev_y);
-            s.solve_current(Operator::Direct, opts)
+            s.subtract_previous(delta_q, &prev_x, &prev_y);
+            s.solve_current(TangentialKernel::Direct, opts)
         })?;
         let c = Creepages {
             xi: param[0],
@@ -575,20 +562,18 @@ impl TangentialSolver {
         Ok(self.solution(delta_q, c, (0.0, 0.0), its, newton, res))
     }
 
-    /// b ← b − (K p) for the kernel spectra (xx, xy, yy).
-    fn subtract_previous(&mut self, shifted: bool, qx: &[f64], qy: &[f64]) {
-        let [kxx, kxy, kyy] = if shifted {
-            &self.shifted.as_ref().expect("built by the caller").1
+    /// b ← b − A_v(δq) p' (A_v(0) = A), the previous tractions' contribution to S.
+    fn subtract_previous(&mut self, delta_q: f64, qx: &[f64], qy: &[f64]) {
+        let kernel = if delta_q > 0.0 {
+            TangentialKernel::Shifted(delta_q)
         } else {
-            &self.direct.spectra
+            TangentialKernel::Direct
         };
-        self.conv.apply(kxx, qx, &mut self.tmp);
-        sub(&mut self.bx, &self.tmp);
-        self.conv.apply(kxy, qy, &mut self.tmp);
-        sub(&mut self.bx, &self.tmp);
-        self.conv.apply(kxy, qx, &mut self.tmp);
-        sub(&mut self.by, &self.tmp);
-        self.conv.apply(kyy, qy, &mut self.tmp);
-        sub(&mut self.by, &self.tmp);
+        self.operator.traction_product(
+            kernel,
+            Update::Subtract,
+            (qx, qy),
+            (&mut self.bx, &mut self.by),
+        );
     }
 }

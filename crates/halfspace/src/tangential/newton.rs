@@ -4,8 +4,9 @@
 
 use super::{TangentialOptions, TangentialSolver};
 use crate::error::{ContactError, finite};
+use crate::operator::TangentialInfluenceOperator;
 
-impl TangentialSolver {
+impl<T: TangentialInfluenceOperator> TangentialSolver<T> {
     pub(super) fn check_force_target(
         &self,
         fx: f64,
@@ -126,7 +127,7 @@ impl TangentialSolver {
 
     /// Total forces of the current tractions.
     pub(super) fn forces(&self) -> (f64, f64) {
-        let a = self.grid.element_area();
+        let a = self.grid().element_area();
         (
             a * self.px.iter().sum::<f64>(),
             a * self.py.iter().sum::<f64>(),

@@ -2,19 +2,21 @@
 //! solve of one element's Coulomb problem (module documentation of [`super`]).
 
 use super::anderson::Anderson;
-use super::kernels::{Operator, add, add_column};
+use super::coupling::add;
 use super::{Creepages, ElementState, TangentialOptions, TangentialSolution, TangentialSolver};
 use crate::error::ContactError;
+use crate::operator::{TangentialInfluenceOperator, TangentialKernel, Update};
 
-impl TangentialSolver {
-    /// Gauss–Seidel on S = b + C p with the bound in `self.bound`, from the current p
-    /// (zeroed where the bound is zero). Returns (sweeps, last relative change).
+impl<T: TangentialInfluenceOperator> TangentialSolver<T> {
+    /// Gauss–Seidel on S = b + C p with C the operator's `op` kernel (A or A − A_v, prepared)
+    /// and the bound in `self.bound`, from the current p (zeroed where the bound is zero).
+    /// Returns (sweeps, last relative change).
     pub(super) fn solve_current(
         &mut self,
-        op: Operator,
+        op: TangentialKernel,
         options: &TangentialOptions,
     ) -> Result<(usize, f64), ContactError> {
-        let g = self.grid;
+        let g = *self.grid();
         let (nx, ny) = (g.nx, g.ny);
         if !options.warm_start && !self.has_previous {
             self.px.fill(0.0);
@@ -39,30 +41,14 @@ impl TangentialSolver {
                 reason: "the pressure is zero everywhere",
             });
         }
-        // S = b + C p by FFT.
-        let kernels = match op {
-            Operator::Direct => &self.direct,
-            Operator::Steady => self.steady.as_ref().expect("built by the caller"),
-        };
-        let [kxx, kxy, kyy] = &kernels.spectra;
-        self.conv.apply(kxx, &self.px, &mut self.sx);
-        self.conv.apply(kxy, &self.py, &mut self.tmp);
-        add(&mut self.sx, &self.tmp);
-        add(&mut self.sx, &self.bx);
-        self.conv.apply(kxy, &self.px, &mut self.sy);
-        self.conv.apply(kyy, &self.py, &mut self.tmp);
-        add(&mut self.sy, &self.tmp);
-        add(&mut self.sy, &self.by);
-
-        let wx = 2 * nx - 1;
-        let centre = (ny - 1) * wx + (nx - 1);
-        let (dxx, dyy) = (kernels.xx[centre], kernels.yy[centre]);
+        self.refresh_shift(op);
+        let (dxx, dyy) = self.operator.own_coefficients(op);
         // Steady rolling: the operator is far from symmetric and plain GS can oscillate;
         // start at ω ≤ 0.5 and reduce ω by 0.6 whenever a sweep changes p more than the
         // previous one did (down to 0.05).
         let mut omega = match op {
-            Operator::Direct => options.omega,
-            Operator::Steady => options.omega.min(0.5),
+            TangentialKernel::Steady => options.omega.min(0.5),
+            _ => options.omega,
         };
         let mut change = f64::INFINITY;
         let mut previous_change = f64::INFINITY;
@@ -86,10 +72,6 @@ impl TangentialSolver {
             if sweep > 1 && iy1 > iy0 {
                 self.refresh_shift(op);
             }
-            let kernels = match op {
-                Operator::Direct => &self.direct,
-                Operator::Steady => self.steady.as_ref().expect("built by the caller"),
-            };
             let (mut dp2, mut p2) = (0.0, 0.0);
             for iy in iy0..=iy1 {
                 for ix in (ix0..=ix1).rev() {
@@ -102,7 +84,7 @@ impl TangentialSolver {
                     let rx = self.sx[k] - dxx * ox;
                     let ry = self.sy[k] - dyy * oy;
                     let (mut nxv, mut nyv, slipping) = local_solve(rx, ry, dxx, dyy, bound);
-                    if !slipping || op == Operator::Steady {
+                    if !slipping || op == TangentialKernel::Steady {
                         nxv = ox + omega * (nxv - ox);
                         nyv = oy + omega * (nyv - oy);
                     }
@@ -115,24 +97,18 @@ impl TangentialSolver {
                         continue;
                     }
                     dp2 += ddx * ddx + ddy * ddy;
-                    add_column(
-                        kernels,
-                        &g,
-                        ix,
-                        iy,
-                        ddx,
-                        ddy,
-                        &mut self.sx,
-                        &mut self.sy,
-                        ix0,
-                        ix1,
-                        iy,
-                        iy1,
+                    self.operator.add_column(
+                        op,
+                        (ix, iy),
+                        (ddx, ddy),
+                        (&mut self.sx, &mut self.sy),
+                        (ix0, ix1),
+                        (iy, iy1),
                     );
                 }
             }
             change = if p2 > 0.0 { (dp2 / p2).sqrt() } else { 0.0 };
-            if op == Operator::Steady && sweep > 2 && change > previous_change {
+            if op == TangentialKernel::Steady && sweep > 2 && change > previous_change {
                 omega = (0.6 * omega).max(0.05);
             }
             previous_change = change;
@@ -185,19 +161,16 @@ impl TangentialSolver {
         })
     }
 
-    pub(super) fn refresh_shift(&mut self, op: Operator) {
-        let kernels = match op {
-            Operator::Direct => &self.direct,
-            Operator::Steady => self.steady.as_ref().expect("built by the caller"),
-        };
-        let [kxx, kxy, kyy] = &kernels.spectra;
-        self.conv.apply(kxx, &self.px, &mut self.sx);
-        self.conv.apply(kxy, &self.py, &mut self.tmp);
-        add(&mut self.sx, &self.tmp);
+    /// S = C p + b exactly (one operator product): at the start of a solve, before each
+    /// sweep over several rows, after an acceleration step and at convergence.
+    pub(super) fn refresh_shift(&mut self, op: TangentialKernel) {
+        self.operator.traction_product(
+            op,
+            Update::Set,
+            (&self.px, &self.py),
+            (&mut self.sx, &mut self.sy),
+        );
         add(&mut self.sx, &self.bx);
-        self.conv.apply(kxy, &self.px, &mut self.sy);
-        self.conv.apply(kyy, &self.py, &mut self.tmp);
-        add(&mut self.sy, &self.tmp);
         add(&mut self.sy, &self.by);
     }
 
@@ -210,7 +183,7 @@ impl TangentialSolver {
         newton_iterations: usize,
         residual: f64,
     ) -> TangentialSolution {
-        let g = self.grid;
+        let g = *self.grid();
         let n = g.len();
         let area = g.element_area();
         let scale = if delta_q > 0.0 { 1.0 / delta_q } else { 1.0 };

@@ -1,0 +1,208 @@
+//! The influence operators of the half-space, behind traits with a fast and a slow
+//! implementation (references.md §C3.3).
+//!
+//! **Normal problem.** A_IJ is Love's displacement at the centre of element I under a unit
+//! pressure on element J ([`crate::influence::normal_influence`]); it depends on the offset
+//! of the two elements only, so the product u = A p is a discrete convolution.
+//!
+//! * [`FftInfluence`]: the zero-padded FFT convolution with the tabulated circulant kernel,
+//!   O(n log n) (the default operator of [`crate::NormalSolver`]);
+//! * [`DirectInfluence`]: the O(n²) sum straight from Love's formula; its products use no
+//!   table and no FFT (only its preconditioner is the FFT one, see below): the first-class
+//!   slow oracle (as RustFFT's `Dft` is for its FFTs), for tests and for checking the fast
+//!   path on new grids.
+//!
+//! **Tangential problem.** The tangential solver needs a family of kernels (A_xx, A_xy,
+//! A_yy, the coupling A_xn, A_yn, each also with shifted observation points for rolling):
+//! [`TangentialInfluenceOperator`] in [`tangential`], again with an FFT and a direct
+//! implementation.
+//!
+//! NormCG ([`crate::normcg`]) and the tangential sweeps ([`crate::tangential`]) are generic
+//! over these traits (monomorphised: no dynamic dispatch in the inner loops); their public
+//! constructors `new` use the FFT operators, `with_operator` takes any implementation. A
+//! solve with the direct operators follows the same iterates as one with the FFT operators
+//! up to round-off (both use the same FFT preconditioner, which only steers the iteration),
+//! so the two solutions agree to ~1e-12 (tests/operator_solvers.rs).
+
+pub mod tangential;
+
+use crate::convolution::{FftConvolution, KernelSpectrum};
+use crate::error::{ContactError, positive};
+use crate::grid::Grid;
+use crate::influence::{circulant_kernel, normal_influence};
+use crate::material::Material;
+
+pub use tangential::{
+    DirectTangentialInfluence, FftTangentialInfluence, TangentialInfluenceOperator,
+    TangentialKernel, Update,
+};
+
+/// u = A p on a grid: `pressure` \[Pa\] in, normal displacement difference \[m\] out, both
+/// with one value per element (x fastest), plus what NormCG needs besides the product.
+pub trait InfluenceOperator {
+    /// The grid the operator acts on.
+    fn grid(&self) -> &Grid;
+
+    /// The combined material whose influence coefficients the operator holds.
+    fn material(&self) -> &Material;
+
+    /// `displacement = A pressure`. Panics if a slice does not have one value per element.
+    fn apply(&mut self, pressure: &[f64], displacement: &mut [f64]);
+
+    /// `displacement += Σ_j Δp_j A e_j` for the few `(j, Δp_j)` in `changes`: the columns of
+    /// A for a sparse pressure change (O(n) per column).
+    fn add_columns(&mut self, changes: &[(usize, f64)], displacement: &mut [f64]);
+
+    /// `out = M residual` with M ≈ A⁻¹ symmetric positive definite (NormCG's preconditioner;
+    /// it changes the number of iterations, never the solution).
+    fn precondition(&mut self, residual: &[f64], out: &mut [f64]);
+}
+
+/// The FFT implementation (module documentation). Plans, the kernel table and the spectra of
+/// A and of the preconditioner are made once; no method allocates.
+#[derive(Debug)]
+pub struct FftInfluence {
+    grid: Grid,
+    material: Material,
+    conv: FftConvolution,
+    spectrum: KernelSpectrum,
+    /// The influence kernel in circulant order (for exact sparse column updates).
+    kernel: Vec<f64>,
+    /// Vollebregt's FFT preconditioner: the convolution whose spectrum is the reciprocal of
+    /// A's (references.md §C3.4).
+    inverse: KernelSpectrum,
+}
+
+impl FftInfluence {
+    /// Tabulates A's kernel for `grid` and `material`, plans the FFTs and builds the
+    /// preconditioner.
+    pub fn new(grid: Grid, material: &Material) -> Result<Self, ContactError> {
+        let grid = Grid::new(grid.nx, grid.ny, grid.dx, grid.dy, grid.x0, grid.y0)?;
+        positive("G", material.g)?;
+        let conv = FftConvolution::new(grid.nx, grid.ny);
+        let kernel = circulant_kernel(material, &grid);
+        let spectrum = conv.kernel_spectrum(&kernel);
+        let inverse = spectrum
+            .reciprocal(conv.normalisation())
+            .ok_or_else(|| ContactError::Fft("influence spectrum has a zero coefficient".into()))?;
+        Ok(Self {
+            grid,
+            material: *material,
+            conv,
+            spectrum,
+            kernel,
+            inverse,
+        })
+    }
+}
+
+impl InfluenceOperator for FftInfluence {
+    fn grid(&self) -> &Grid {
+        &self.grid
+    }
+
+    fn material(&self) -> &Material {
+        &self.material
+    }
+
+    fn apply(&mut self, pressure: &[f64], displacement: &mut [f64]) {
+        self.conv.apply(&self.spectrum, pressure, displacement);
+    }
+
+    /// Reads the columns from the circulant kernel table: contiguous rows, no allocation.
+    fn add_columns(&mut self, changes: &[(usize, f64)], displacement: &mut [f64]) {
+        let (nx, ny) = (self.grid.nx, self.grid.ny);
+        let (mx, my) = (2 * nx, 2 * ny);
+        assert_eq!(displacement.len(), nx * ny, "one value per element");
+        for &(j, dp) in changes {
+            let (jx, jy) = (j % nx, j / nx);
+            for iy in 0..ny {
+                let dj = (iy + my - jy) % my;
+                let row = &self.kernel[dj * mx..(dj + 1) * mx];
+                let u_row = &mut displacement[iy * nx..(iy + 1) * nx];
+                // Offsets ix − jx < 0 wrap to the end of the circulant row.
+                let (left, right) = u_row.split_at_mut(jx);
+                for (u, k) in left.iter_mut().zip(&row[mx - jx..]) {
+                    *u += k * dp;
+                }
+                for (u, k) in right.iter_mut().zip(row) {
+                    *u += k * dp;
+                }
+            }
+        }
+    }
+
+    fn precondition(&mut self, residual: &[f64], out: &mut [f64]) {
+        self.conv.apply(&self.inverse, residual, out);
+    }
+}
+
+/// The direct O(n²) sum u_I = Σ_J A(x_I − x_J, y_I − y_J) p_J with every coefficient
+/// evaluated from Love's formula (module documentation). Its preconditioner is the FFT one
+/// of [`FftInfluence`], so that solves with either operator take the same path.
+#[derive(Debug)]
+pub struct DirectInfluence {
+    grid: Grid,
+    material: Material,
+    /// Used only for [`InfluenceOperator::precondition`].
+    preconditioner: FftInfluence,
+}
+
+impl DirectInfluence {
+    /// The oracle on `grid` for `material`.
+    pub fn new(grid: Grid, material: Material) -> Result<Self, ContactError> {
+        let preconditioner = FftInfluence::new(grid, &material)?;
+        Ok(Self {
+            grid: preconditioner.grid,
+            material,
+            preconditioner,
+        })
+    }
+
+    /// A_IJ from Love's formula.
+    fn coefficient(&self, i: usize, j: usize) -> f64 {
+        let g = &self.grid;
+        let ((xi, yi), (xj, yj)) = (g.centre(i), g.centre(j));
+        normal_influence(&self.material, xi - xj, yi - yj, g.dx, g.dy)
+    }
+
+    /// One value u_I of A p (O(n)), for spot checks on grids too large for the full product.
+    pub fn displacement_at(&self, index: usize, pressure: &[f64]) -> f64 {
+        assert_eq!(pressure.len(), self.grid.len(), "one pressure per element");
+        pressure
+            .iter()
+            .enumerate()
+            .map(|(j, p)| self.coefficient(index, j) * p)
+            .sum()
+    }
+}
+
+impl InfluenceOperator for DirectInfluence {
+    fn grid(&self) -> &Grid {
+        &self.grid
+    }
+
+    fn material(&self) -> &Material {
+        &self.material
+    }
+
+    fn apply(&mut self, pressure: &[f64], displacement: &mut [f64]) {
+        assert_eq!(displacement.len(), self.grid.len(), "one value per element");
+        for (i, u) in displacement.iter_mut().enumerate() {
+            *u = self.displacement_at(i, pressure);
+        }
+    }
+
+    fn add_columns(&mut self, changes: &[(usize, f64)], displacement: &mut [f64]) {
+        assert_eq!(displacement.len(), self.grid.len(), "one value per element");
+        for &(j, dp) in changes {
+            for (i, u) in displacement.iter_mut().enumerate() {
+                *u += self.coefficient(i, j) * dp;
+            }
+        }
+    }
+
+    fn precondition(&mut self, residual: &[f64], out: &mut [f64]) {
+        self.preconditioner.precondition(residual, out);
+    }
+}
