@@ -152,6 +152,9 @@ pub mod ranges {
     pub const MASS_PER_LENGTH: Range = Range::closed(1e-6, 1e7, "kg/m");
     /// A mass that may be zero (a massless wheel, no body, no point mass).
     pub const MASS_OR_ZERO: Range = Range::closed(0.0, 1e8, "kg");
+    /// A vehicle mass (wheel, body) when it is not zero: a gram to 100,000 t (a tiny positive
+    /// mass is a typo or an overflow, and makes the step matrix singular).
+    pub const VEHICLE_MASS: Range = Range::closed(1e-3, 1e8, "kg");
     /// A mass that must be positive.
     pub const MASS: Range = Range::above(0.0, 1e8, "kg");
     /// A rotary or polar inertia.

@@ -1,6 +1,7 @@
 //! `kind = "vehicle_bridge"`: wheels over a modal bridge with local contact
 //! (docs/vehicle_bridge.md). Every key is in SI units; unknown keys are errors.
 
+use halfspace::law::ContactLaw;
 use serde::Deserialize;
 
 use super::ConfigError;
@@ -479,8 +480,16 @@ fn check_ranges(s: &Scenario) -> Result<(), ConfigError> {
     for (k, w) in s.wheels.iter().enumerate() {
         let key = |f: &str| format!("vehicle.wheels[{k}].{f}");
         ranges::POSITION.check(&key("position"), w.position)?;
-        ranges::MASS_OR_ZERO.check(&key("wheel_mass"), w.wheel_mass)?;
-        ranges::MASS_OR_ZERO.check(&key("body_mass"), w.body_mass)?;
+        for (name, mass) in [("wheel_mass", w.wheel_mass), ("body_mass", w.body_mass)] {
+            if mass != 0.0 && !ranges::VEHICLE_MASS.contains(mass) {
+                bail!(
+                    "`{}` = {}: must be 0 or lie in {}",
+                    key(name),
+                    checks::number(mass),
+                    ranges::VEHICLE_MASS
+                );
+            }
+        }
         ranges::STIFFNESS.check(&key("suspension_stiffness"), w.suspension_stiffness)?;
         ranges::DAMPER.check(&key("suspension_damping"), w.suspension_damping)?;
         ranges::FORCE.check(&key("static_load"), w.static_load)?;
@@ -493,6 +502,7 @@ fn check_ranges(s: &Scenario) -> Result<(), ConfigError> {
         s.geometry.rail_profile_radius,
     )?;
     ranges::MODULUS.check("contact.E", s.geometry.youngs_modulus)?;
+    check_patch_small(s)?;
     ranges::TIME_STEP.check("integrator.dt", s.dt)?;
     ranges::DURATION.check_opt("integrator.duration", s.duration)?;
     ranges::TOLERANCE.check("coupling.tol", s.coupling.tol)?;
@@ -504,6 +514,40 @@ fn check_ranges(s: &Scenario) -> Result<(), ConfigError> {
             "`output.point` = {}: must lie on the span [0, {length}] m",
             checks::number(s.output_point)
         );
+    }
+    Ok(())
+}
+
+/// Largest Hertz approach under a static wheel load, as a fraction of the smaller radius of
+/// curvature: δ ≤ 0.01 min(R_w, R_r) keeps the patch semi-axes below about 0.1 of the radii
+/// (δ ≈ a²/R), where the half-space idealisation of both compliant laws holds
+/// (references.md §C4.1).
+const MAX_APPROACH_PER_RADIUS: f64 = 0.01;
+
+/// The compliant contact laws need a patch small against the wheel and rail-head radii
+/// (half-space contact); a tiny radius under a wheel load would put the BEM grid outside the
+/// wheel circle. Checked under each wheel's static load (rigid contact has no patch).
+fn check_patch_small(s: &Scenario) -> Result<(), ConfigError> {
+    if s.contact == ContactModel::Rigid {
+        return Ok(());
+    }
+    let mut law = s.geometry.hertz().map_err(|e| invalid!("{e}"))?;
+    let radius = s.geometry.wheel_radius.min(s.geometry.rail_profile_radius);
+    for (k, w) in s.wheels.iter().enumerate() {
+        let load = (w.wheel_mass + w.body_mass) * s.gravity + w.static_load;
+        if load.is_nan() || load <= 0.0 {
+            continue;
+        }
+        let approach = law.static_approach(load).map_err(|e| invalid!("{e}"))?;
+        if approach > MAX_APPROACH_PER_RADIUS * radius {
+            bail!(
+                "`contact.wheel_radius` = {} m, `contact.rail_profile_radius` = {} m: the static load {} N of vehicle.wheels[{k}] gives a Hertz approach of {:.3e} m, more than {MAX_APPROACH_PER_RADIUS} × the smaller radius, so the contact patch is not small against the radii and half-space contact does not apply (use larger radii, a stiffer material or contact.model = \"rigid\")",
+                checks::number(s.geometry.wheel_radius),
+                checks::number(s.geometry.rail_profile_radius),
+                checks::number(load),
+                approach,
+            );
+        }
     }
     Ok(())
 }

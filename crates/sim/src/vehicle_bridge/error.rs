@@ -14,6 +14,13 @@ pub enum VehicleBridgeError {
         value: f64,
         reason: String,
     },
+    /// A choice (a method or model name) is not allowed here; `name` is the scenario key.
+    #[error("invalid `{name}` = \"{value}\": {reason}")]
+    InvalidChoice {
+        name: String,
+        value: String,
+        reason: String,
+    },
     /// The beam (modal basis) failed.
     #[error("bridge: {0}")]
     Beam(#[from] BeamError),
@@ -53,6 +60,16 @@ pub(crate) fn invalid(name: impl Into<String>, value: f64, reason: &str) -> Vehi
     VehicleBridgeError::InvalidParameter {
         name: name.into(),
         value,
+        reason: reason.to_string(),
+    }
+}
+
+/// The error of a scenario key `name` whose text `value` (a method or model name) is not
+/// allowed, with the reason.
+pub(crate) fn invalid_text(name: &str, value: &str, reason: &str) -> VehicleBridgeError {
+    VehicleBridgeError::InvalidChoice {
+        name: name.to_string(),
+        value: value.to_string(),
         reason: reason.to_string(),
     }
 }

@@ -3,7 +3,7 @@
 use beam::{ModalBasis, ModalDamping};
 use integrate::structural::StructuralMethod;
 
-use super::error::{check_non_negative, invalid};
+use super::error::{check_non_negative, invalid, invalid_text};
 use super::{ContactGeometry, Irregularity, MAX_STEPS, Radau5Spec, VehicleBridgeError};
 
 /// One wheel (with its sprung body) of the vehicle; positions at t = 0.
@@ -191,18 +191,18 @@ pub(super) fn validate(scenario: &mut Scenario) -> Result<(), VehicleBridgeError
     match scenario.integrator {
         Integrator::Structural(method) => {
             if method.is_explicit() {
-                return Err(invalid(
+                return Err(invalid_text(
                     "integrator.method",
-                    f64::NAN,
+                    method.name(),
                     "the coupled step needs an implicit method (newmark with beta > 0, hht, generalized_alpha, backward_euler, radau5)",
                 ));
             }
         }
         Integrator::Radau5(spec) => {
             if scenario.contact == ContactModel::Rigid {
-                return Err(invalid(
+                return Err(invalid_text(
                     "contact.model",
-                    f64::NAN,
+                    "rigid",
                     "radau5 needs a compliant contact (hertz or bem): a rigid contact is an algebraic constraint, not an ODE",
                 ));
             }
@@ -331,9 +331,9 @@ pub(super) fn validate(scenario: &mut Scenario) -> Result<(), VehicleBridgeError
         }
     }
     if c.solver == CouplingSolver::Picard && scenario.contact == ContactModel::Rigid {
-        return Err(invalid(
+        return Err(invalid_text(
             "coupling.solver",
-            f64::NAN,
+            "picard",
             "picard needs a compliant contact (hertz or bem); a rigid contact has no force law to iterate on",
         ));
     }

@@ -176,9 +176,9 @@ impl Traction {
         // Wheel and rail share E and nu (K = 0): halfspace's rule gives the sequential solve
         // (normal by the contact law, then tangential), which is what `update` does.
         if tangential_strategy(spec.method, &material) == TangentialStrategy::Coupled {
-            return Err(bad(
+            return Err(super::error::invalid_text(
                 "traction.method",
-                f64::NAN,
+                spec.method.name(),
                 "dissimilar wheel and rail materials (K != 0) need the coupled normal-tangential solve, which the traction model does not do",
             ));
         }
@@ -189,9 +189,9 @@ impl Traction {
         for contact in contacts {
             if spec.method == TractionMethod::Exact {
                 let Some((grid, _)) = pressure_field(contact) else {
-                    return Err(bad(
+                    return Err(super::error::invalid_text(
                         "traction.method",
-                        f64::NAN,
+                        "exact",
                         "`exact` needs contact.model = \"bem\" (the pressure field on a grid); use \"fastsim\" or \"linear\"",
                     ));
                 };
