@@ -398,10 +398,10 @@ impl Simulation {
                 continue;
             }
             let accel = rw.old_relative_acceleration[k] - rw.old_convective[k];
-            if let Some(tau) = first_gap_root(delta, rate, accel, h) {
-                if first.is_none_or(|(_, t)| tau < t) {
-                    first = Some((k, tau));
-                }
+            if let Some(tau) = first_gap_root(delta, rate, accel, h)
+                && first.is_none_or(|(_, t)| tau < t)
+            {
+                first = Some((k, tau));
             }
         }
         let (k, tau) = first?;
