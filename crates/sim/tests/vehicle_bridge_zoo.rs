@@ -428,14 +428,6 @@ const FORCE_BOUND: f64 = 0.05;
 /// zoo), so 2 %.
 const DEFLECTION_BOUND: f64 = 0.02;
 
-/// The deflection bound of a rigid run with landings. A landing is a plastic impact applied at
-/// the end of the step in which the wheel reaches the rail (first order in Δt at the impact,
-/// docs/vehicle_bridge.md "Not implemented"), so these runs do not meet [`DEFLECTION_BOUND`]:
-/// the long mode (1,000 cases) measured up to 13 % between Δt and Δt/2. Such a run must flag
-/// itself (`accuracy.warnings`, "rigid contact with … loss-of-contact events"); the bound
-/// records the known limitation (issue 9 stays open on it) and catches anything worse.
-const RIGID_LANDING_DEFLECTION_BOUND: f64 = 0.15;
-
 /// Compares a default run of `case` with its tight run; `Err` describes the disagreement.
 fn check_agreement(case: &Case, default: &Outcome, tight: &Outcome) -> Result<(f64, f64), String> {
     let (a, b) = (&default.summary, &tight.summary);
@@ -461,11 +453,9 @@ fn check_agreement(case: &Case, default: &Outcome, tight: &Outcome) -> Result<(f
             a.loss_of_contact_events, a.accuracy.warnings
         ));
     }
-    let deflection_bound = if landing_flagged {
-        RIGID_LANDING_DEFLECTION_BOUND
-    } else {
-        DEFLECTION_BOUND
-    };
+    // Rigid landings are located inside the step (module `rigid`), so they meet the same
+    // deflection bound (before, landing at the step's end, they differed by up to 13 %).
+    let deflection_bound = DEFLECTION_BOUND;
     if (force_error > FORCE_BOUND && !flagged) || deflection_error > deflection_bound {
         return Err(format!(
             "the default run disagrees with the tight run (Δt/2, tolerances/100): {} contact force {fa:.6e} N vs {fb:.6e} N ({force_error:.3e} of max(W, F_tight), bound {FORCE_BOUND}; peaks {:.6e} N vs {:.6e} N), max |midspan deflection| {:.6e} m vs {:.6e} m ({deflection_error:.3e}, bound {deflection_bound}); loss-of-contact events {} vs {}; dt·f_c = {:?}; accuracy warnings {:?}",

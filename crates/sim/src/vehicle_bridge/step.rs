@@ -19,7 +19,7 @@ impl Simulation {
         if self.radau.is_some() {
             self.radau_step(dt)?;
         } else {
-            self.advance(dt, 0)?;
+            self.advance_locating_landings(dt)?;
         }
         if let Some(tr) = self.traction.as_mut() {
             tr.update(dt, self.scenario.speed, &self.samples, &self.contacts)?;
