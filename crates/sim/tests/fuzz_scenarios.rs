@@ -582,4 +582,8 @@ fn fuzz_scenario_runs() {
     assert!(t.run_panics.is_empty(), "run panics");
     assert!(t.run_non_finite.is_empty(), "non-finite outputs");
     assert!(t.run_over_limit.is_empty(), "runs over {limit} s");
+    assert!(
+        t.run_errors_without_key.is_empty(),
+        "run failures whose message names no key"
+    );
 }
