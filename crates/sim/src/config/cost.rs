@@ -15,10 +15,10 @@
 //!   a structural method adds `8 n²` (its dense n × n matrix–vector products);
 //! * `vehicle_bridge`: `4 (8 N² + a c)` with `N = n + 2a` unknowns, 4 coupling iterations and
 //!   `c` the contact law's cost (rigid or Hertz 200; boundary elements: 3 solves of
-//!   `2 · 4e log₂(4e)` for `e` elements, [`bem_solve`]), × 6 with Radau5 (three stages,
+//!   `2 · 4e log₂(4e)` for `e` elements, `bem_solve`), × 6 with Radau5 (three stages,
 //!   sub-steps);
 //! * `ball_drop`: the estimated steps of its plan ([`crate::ball_drop::plan`]) × 2000, plus
-//!   per estimated contact step 40 BEM solves ([`BALL_SOLVES_PER_STEP`]).
+//!   per estimated contact step 40 BEM solves (`BALL_SOLVES_PER_STEP`).
 //!
 //! A `contact` case is one solve and has no estimate here.
 
