@@ -139,8 +139,8 @@ fn radau5_input_errors_name_the_key() {
     let mut sc = scenario(1e-3, ContactModel::Rigid, 0.0);
     sc.integrator = Integrator::Radau5(Radau5Spec::default());
     let e = Simulation::new(sc).map(|_| ()).unwrap_err();
-    assert!(matches!(e, VehicleBridgeError::InvalidParameter { .. }));
-    assert!(e.to_string().contains("contact.model"), "{e}");
+    assert!(matches!(e, VehicleBridgeError::InvalidChoice { .. }));
+    assert!(e.to_string().contains("`contact.model` = \"rigid\""), "{e}");
     for (rtol, atol, key) in [
         (0.0, 1e-9, "integrator.rtol"),
         (f64::NAN, 1e-9, "integrator.rtol"),

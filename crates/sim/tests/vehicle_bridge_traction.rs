@@ -334,7 +334,10 @@ fn invalid_traction_input_names_the_key() {
     for (spec, contact, key) in cases {
         let mut sim = Simulation::new(scenario(contact, 1)).unwrap();
         match sim.set_traction(spec) {
-            Err(VehicleBridgeError::InvalidParameter { name, .. }) => assert_eq!(name, key),
+            Err(
+                VehicleBridgeError::InvalidParameter { name, .. }
+                | VehicleBridgeError::InvalidChoice { name, .. },
+            ) => assert_eq!(name, key),
             other => panic!("{key}: expected an error, got {other:?}"),
         }
     }
