@@ -32,44 +32,8 @@ use crate::ode::eval_rhs;
 use crate::stats::Stats;
 use faer::{Mat, c64};
 
-const SQ6: f64 = 2.449_489_742_783_178;
-const C1: f64 = (4.0 - SQ6) / 10.0;
-const C2: f64 = (4.0 + SQ6) / 10.0;
-const C1M1: f64 = C1 - 1.0;
-const C2M1: f64 = C2 - 1.0;
-const C1MC2: f64 = C1 - C2;
-/// Error-estimate weights `e = γ̂ ⋅ b̂ − …` of RADAU5 (`DD1..DD3`), divided by h in use.
-const DD1: f64 = -(13.0 + 7.0 * SQ6) / 3.0;
-const DD2: f64 = (-13.0 + 7.0 * SQ6) / 3.0;
-const DD3: f64 = -1.0 / 3.0;
-/// Transformation `T` and its inverse (RADAU5; `T₃₂ = 1`, `T₃₃ = 0`).
-const T11: f64 = 9.123_239_487_089_294_279e-2;
-const T12: f64 = -0.141_255_295_020_954_208_43;
-const T13: f64 = -3.002_919_410_514_742_449_2e-2;
-const T21: f64 = 0.241_717_932_707_107_018_96;
-const T22: f64 = 0.204_129_352_293_799_931_99;
-const T23: f64 = 0.382_942_112_757_261_937_79;
-const T31: f64 = 0.966_048_182_615_092_936_19;
-const TI11: f64 = 4.325_579_890_063_155_351;
-const TI12: f64 = 0.339_199_251_815_809_869_54;
-const TI13: f64 = 0.541_770_539_935_874_871_19;
-const TI21: f64 = -4.178_718_591_551_904_727_3;
-const TI22: f64 = -0.327_682_820_761_062_387_08;
-const TI23: f64 = 0.476_623_554_500_550_451_96;
-const TI31: f64 = -0.502_872_634_945_786_875_95;
-const TI32: f64 = 2.571_926_949_855_605_429_2;
-const TI33: f64 = -0.596_039_204_828_224_924_97;
-
-/// Eigenvalues of `A⁻¹`: real `γ̂ = 1/u₁` and complex pair `α̂ ± iβ̂`.
-fn eigenvalues_of_a_inverse() -> (f64, f64, f64) {
-    let cbrt81 = 81f64.cbrt();
-    let cbrt9 = 9f64.cbrt();
-    let u1 = (6.0 + cbrt81 - cbrt9) / 30.0;
-    let alph = (12.0 - cbrt81 + cbrt9) / 60.0;
-    let beta = (cbrt81 + cbrt9) * 3f64.sqrt() / 60.0;
-    let cno = alph * alph + beta * beta;
-    (1.0 / u1, alph / cno, beta / cno)
-}
+mod coefficients;
+use coefficients::*;
 
 /// RADAU5's default controls: Newton iterations, safety, θ for Jacobian reuse, step-ratio band
 /// that keeps the LU factors, and step-ratio bounds.
@@ -715,81 +679,4 @@ impl OdeStepper for Radau5 {
 }
 
 #[cfg(test)]
-#[allow(clippy::needless_range_loop)]
-mod tests {
-    use super::*;
-
-    /// Radau IIA(5) coefficient matrix A (Hairer–Wanner II, Table IV.5.6).
-    fn radau_a() -> [[f64; 3]; 3] {
-        [
-            [
-                (88.0 - 7.0 * SQ6) / 360.0,
-                (296.0 - 169.0 * SQ6) / 1800.0,
-                (-2.0 + 3.0 * SQ6) / 225.0,
-            ],
-            [
-                (296.0 + 169.0 * SQ6) / 1800.0,
-                (88.0 + 7.0 * SQ6) / 360.0,
-                (-2.0 - 3.0 * SQ6) / 225.0,
-            ],
-            [(16.0 - SQ6) / 36.0, (16.0 + SQ6) / 36.0, 1.0 / 9.0],
-        ]
-    }
-
-    fn t_matrix() -> [[f64; 3]; 3] {
-        [[T11, T12, T13], [T21, T22, T23], [T31, 1.0, 0.0]]
-    }
-
-    fn ti_matrix() -> [[f64; 3]; 3] {
-        [[TI11, TI12, TI13], [TI21, TI22, TI23], [TI31, TI32, TI33]]
-    }
-
-    fn mul(a: [[f64; 3]; 3], b: [[f64; 3]; 3]) -> [[f64; 3]; 3] {
-        let mut c = [[0.0; 3]; 3];
-        for i in 0..3 {
-            for j in 0..3 {
-                for k in 0..3 {
-                    c[i][j] += a[i][k] * b[k][j];
-                }
-            }
-        }
-        c
-    }
-
-    /// The hard-coded T, T⁻¹ satisfy `T⁻¹ T = I` and `T⁻¹ A T = diag(1/γ̂, block)`, i.e. they
-    /// diagonalise A as `T⁻¹ A⁻¹ T = [γ̂ 0 0; 0 α̂ −β̂; 0 β̂ α̂]`; checked against the published A.
-    /// Tolerance 1e-13: the constants carry 20 digits, products lose a few ulps.
-    #[test]
-    fn transformation_diagonalises_a_inverse() {
-        let (gamma, alpha, beta) = eigenvalues_of_a_inverse();
-        let ident = mul(ti_matrix(), t_matrix());
-        for i in 0..3 {
-            for j in 0..3 {
-                let expect = if i == j { 1.0 } else { 0.0 };
-                assert!(
-                    (ident[i][j] - expect).abs() < 1e-13,
-                    "TI·T[{i}][{j}] = {}",
-                    ident[i][j]
-                );
-            }
-        }
-        // A T = T Λ⁻¹ with Λ = [γ 0 0; 0 α −β; 0 β α]; check T⁻¹ A T = Λ⁻¹.
-        let d = mul(ti_matrix(), mul(radau_a(), t_matrix()));
-        let cno = alpha * alpha + beta * beta;
-        let expect = [
-            [1.0 / gamma, 0.0, 0.0],
-            [0.0, alpha / cno, beta / cno],
-            [0.0, -beta / cno, alpha / cno],
-        ];
-        for i in 0..3 {
-            for j in 0..3 {
-                assert!(
-                    (d[i][j] - expect[i][j]).abs() < 1e-13,
-                    "T⁻¹AT[{i}][{j}] = {} vs {}",
-                    d[i][j],
-                    expect[i][j]
-                );
-            }
-        }
-    }
-}
+mod tests;
