@@ -3,7 +3,7 @@
 //! [`crate::output::json_text`] instead of vanishing silently.
 
 use serde::Serialize;
-use sim::ball_drop::{BallDropResult, ForceModel, Integrator};
+use sim::ball_drop::{BallDropResult, ForceModel, HertzImpact, Impact, Integrator, RunStats};
 use sim::config::ball_drop::BallDropConfig;
 
 /// The whole summary.
@@ -21,8 +21,9 @@ pub struct Summary {
     pub mass: f64,
     pub hertz_constant: f64,
     pub contact: Contact,
-    pub closed_form: ClosedForm,
-    pub impacts: Vec<ImpactJson>,
+    /// The Hertz impact at the first impact speed.
+    pub closed_form: HertzImpact,
+    pub impacts: Vec<Impact>,
     pub restitution: Option<f64>,
     pub initial_energy: f64,
     pub energy_drift: f64,
@@ -45,27 +46,6 @@ pub struct Contact {
     pub damping: f64,
 }
 
-/// `closed_form`: the Hertz impact at the first impact speed.
-#[derive(Debug, Serialize)]
-pub struct ClosedForm {
-    pub impact_speed: f64,
-    pub max_approach: f64,
-    pub peak_force: f64,
-    pub contact_duration: f64,
-}
-
-/// One entry of `impacts`.
-#[derive(Debug, Serialize)]
-pub struct ImpactJson {
-    pub time: f64,
-    pub impact_velocity: f64,
-    pub max_approach: f64,
-    pub peak_force: f64,
-    pub contact_duration: Option<f64>,
-    pub rebound_velocity: Option<f64>,
-    pub restitution: Option<f64>,
-}
-
 /// `accuracy`: the run's own accuracy indicators.
 #[derive(Debug, Serialize)]
 pub struct Accuracy {
@@ -82,7 +62,6 @@ pub struct Accuracy {
 /// `integrator`: the method, its settings and its counters.
 #[derive(Debug, Serialize)]
 pub struct IntegratorJson {
-    pub method: &'static str,
     /// The settings of the method's kind (absent for the others; `null`: not given).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rtol: Option<Option<f64>>,
@@ -92,14 +71,9 @@ pub struct IntegratorJson {
     pub dt: Option<Option<f64>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub dt_flight: Option<Option<f64>>,
-    pub steps: usize,
-    pub rejected_steps: usize,
-    pub f_evals: usize,
-    pub jacobian_evals: usize,
-    pub lu_decompositions: usize,
-    pub newton_iterations: usize,
-    pub guard_retries: usize,
-    pub contact_solves: usize,
+    /// The method's name and counters.
+    #[serde(flatten)]
+    pub stats: RunStats,
 }
 
 /// The summary of run `r` of scenario `p`.
@@ -138,25 +112,8 @@ pub fn summary(p: &BallDropConfig, r: &BallDropResult) -> Summary {
         mass: sc.mass,
         hertz_constant: r.hertz_constant,
         contact,
-        closed_form: ClosedForm {
-            impact_speed: r.reference.impact_speed,
-            max_approach: r.reference.max_approach,
-            peak_force: r.reference.peak_force,
-            contact_duration: r.reference.contact_duration,
-        },
-        impacts: r
-            .impacts
-            .iter()
-            .map(|i| ImpactJson {
-                time: i.time,
-                impact_velocity: i.impact_velocity,
-                max_approach: i.max_approach,
-                peak_force: i.peak_force,
-                contact_duration: i.contact_duration,
-                rebound_velocity: i.rebound_velocity,
-                restitution: i.restitution,
-            })
-            .collect(),
+        closed_form: r.reference,
+        impacts: r.impacts.clone(),
         restitution: r.restitution,
         initial_energy: r.initial_energy,
         energy_drift: r.energy_drift,
@@ -172,19 +129,11 @@ pub fn summary(p: &BallDropConfig, r: &BallDropResult) -> Summary {
             flags: r.accuracy_flags.clone(),
         },
         integrator: IntegratorJson {
-            method: st.method,
             rtol,
             atol,
             dt,
             dt_flight,
-            steps: st.steps,
-            rejected_steps: st.rejected_steps,
-            f_evals: st.f_evals,
-            jacobian_evals: st.jacobian_evals,
-            lu_decompositions: st.lu_decompositions,
-            newton_iterations: st.newton_iterations,
-            guard_retries: st.guard_retries,
-            contact_solves: st.contact_solves,
+            stats: st.clone(),
         },
         final_time: r.final_time,
         samples: r.samples.len(),

@@ -1,7 +1,7 @@
 //! The Hertz impact closed form (references.md §D1.4).
 
 /// Hertz impact closed form (references.md §D1.4, references.md §C4.10; Johnson 1985 §11.4).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct HertzImpact {
     /// Impact speed v \[m/s\].
     pub impact_speed: f64,

@@ -23,7 +23,7 @@ pub struct Sample {
 }
 
 /// One impact.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Impact {
     /// Contact start \[s\].
     pub time: f64,
@@ -56,7 +56,7 @@ impl Impact {
 }
 
 /// Run statistics.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct RunStats {
     /// The method's name.
     pub method: &'static str,
