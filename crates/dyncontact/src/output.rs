@@ -63,9 +63,15 @@ impl RunOutput {
                     parent.display()
                 )));
             }
-            fs::create_dir(dir).map_err(|e| {
-                BadInput::error(format!("--out {shown}: cannot create the directory: {e}"))
-            })?;
+            // A concurrent run may create it between the check and here: that is fine.
+            match fs::create_dir(dir) {
+                Err(e) if !(e.kind() == std::io::ErrorKind::AlreadyExists && dir.is_dir()) => {
+                    return Err(BadInput::error(format!(
+                        "--out {shown}: cannot create the directory: {e}"
+                    )));
+                }
+                _ => {}
+            }
         }
         let nanos = SystemTime::now()
             .duration_since(UNIX_EPOCH)
