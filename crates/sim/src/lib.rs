@@ -11,4 +11,5 @@
 
 pub mod ball_drop;
 pub mod config;
+pub mod train;
 pub mod vehicle_bridge;
