@@ -171,8 +171,8 @@ pub struct Accuracy {
     /// Largest Δt · f_c of a wheel's contact mode (`None` for the rigid contact).
     pub dt_times_contact_frequency: Option<f64>,
     /// Indicators above [`MAX_DT_CONTACT`] / [`MAX_DT_MODE`] (at the start, and for the
-    /// contact at the peak contact force of the run), backward Euler above
-    /// [`MAX_DT_CONTACT_FIRST_ORDER`], and rigid landings after a loss of contact, each with
+    /// contact at the peak contact force of the run), backward Euler with a contact mode (at
+    /// any Δt: its error in force peaks is first order), and rigid landings after a loss of contact, each with
     /// the key and remedy.
     pub warnings: Vec<String>,
 }
@@ -182,20 +182,33 @@ impl Accuracy {
         let (mode, contact) = sim.step_indicators();
         let dt = sim.scenario().dt;
         let mut warnings = Vec::new();
-        if let Some(c) = contact.filter(|&c| c > MAX_DT_CONTACT) {
+        // Radau5 adapts its steps to its error tolerances (Δt only caps them): no contact-mode
+        // resolution indicator applies to it.
+        if let Some(c) = contact.filter(|&c| c > MAX_DT_CONTACT)
+            && !sim.uses_radau5()
+        {
             warnings.push(format!(
                 "the contact mode is under-resolved: integrator.dt = {dt:e} s gives dt·f_c = {c:.3} > {MAX_DT_CONTACT} (fewer than 10 steps per contact period); use dt <= {:.3e} s",
                 dt * MAX_DT_CONTACT / c
             ));
         }
-        if let Some(c) = contact.filter(|&c| c > MAX_DT_CONTACT_FIRST_ORDER && c <= MAX_DT_CONTACT)
+        if let Some(c) = contact.filter(|&c| c <= MAX_DT_CONTACT)
             && sim.scenario().integrator.name() == "backward_euler"
             && !sim.uses_radau5()
         {
+            // A first-order method's damping accumulates over the contact periods a force peak
+            // takes to build up: the scenario zoo's long mode found a peak built over about
+            // five half periods 12 % low at π²·dt·f_c = 2.5 % (case 496), converging only
+            // linearly in dt. No dt keeps that bounded for every transient, so every
+            // backward-Euler run with a contact mode is flagged.
             warnings.push(format!(
-                "backward_euler (first order) damps the contact mode by about π²·dt·f_c = {:.1} % per half period (an impact's force peak is that much too low): integrator.dt = {dt:e} s gives dt·f_c = {c:.4} > {MAX_DT_CONTACT_FIRST_ORDER}; use dt <= {:.3e} s or a second-order method (generalized_alpha)",
+                "backward_euler (first order) damps the contact mode by about π²·dt·f_c = {:.2} % per half period (integrator.dt = {dt:e} s, dt·f_c = {c:.4}), so contact-force peaks that build up over several contact periods come out low by a multiple of that, converging only linearly in dt; use a second-order method (generalized_alpha) for contact forces{}",
                 100.0 * std::f64::consts::PI.powi(2) * c,
-                dt * MAX_DT_CONTACT_FIRST_ORDER / c
+                if c > MAX_DT_CONTACT_FIRST_ORDER {
+                    format!(", or at least dt <= {:.3e} s", dt * MAX_DT_CONTACT_FIRST_ORDER / c)
+                } else {
+                    String::new()
+                }
             ));
         }
         if mode > MAX_DT_MODE {
