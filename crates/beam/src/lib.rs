@@ -41,6 +41,7 @@ pub mod fe;
 pub mod loads;
 pub mod modal;
 pub mod moving;
+pub mod passage;
 pub mod quadrature;
 pub mod sdof;
 
@@ -57,5 +58,6 @@ pub use moving::{
     Axle, ModalIntegrator, MovingLoadResponse, MovingLoadSettings, MovingLoads, StepProgress,
     simulate_moving_loads, simulate_moving_loads_observed,
 };
+pub use passage::{PassagePeaks, PassagePlan, PassageWork};
 pub use quadrature::{Quadrature, QuadratureRule};
 pub use sdof::PiecewiseLinearSdof;
