@@ -261,13 +261,12 @@ impl PassagePlan {
         for p in 0..self.points.len() {
             let shapes = &self.point_shapes[p * n..(p + 1) * n];
             let (mut w, mut a, mut s) = (0.0, 0.0, 0.0);
-            for j in 0..n {
+            for (j, shape) in shapes.iter().enumerate() {
                 let omega2 = self.omegas[j] * self.omegas[j];
-                let q = work.q[j];
-                let f = work.f0[j];
-                w += shapes[j] * q;
-                a += shapes[j] * (f - self.velocity_coefficients[j] * work.v[j] - omega2 * q);
-                s += shapes[j] * f / omega2;
+                let (q, f) = (work.q[j], work.f0[j]);
+                w += shape * q;
+                a += shape * (f - self.velocity_coefficients[j] * work.v[j] - omega2 * q);
+                s += shape * f / omega2;
             }
             peaks.deflection[p] = peaks.deflection[p].max(w.abs());
             peaks.acceleration[p] = peaks.acceleration[p].max(a.abs());
@@ -304,9 +303,9 @@ fn sine_amplitudes(basis: &dyn ModalBasis) -> Result<Option<Vec<f64>>, BeamError
     let mut shapes = vec![0.0; n];
     // Irrational fractions of the span: no mode has a node there for j ≤ MAX_MODES.
     let probes = [
-        0.318_309_886_183_791,
-        0.127_323_954_473_516,
-        0.707_106_781_186_548,
+        std::f64::consts::FRAC_1_PI,
+        0.4 * std::f64::consts::FRAC_1_PI,
+        std::f64::consts::FRAC_1_SQRT_2,
         0.577_215_664_901_533,
     ];
     basis.eval_all(probes[0] * length, Derivative::Shape, &mut shapes)?;
