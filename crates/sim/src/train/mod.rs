@@ -2,10 +2,13 @@
 //!
 //! A train is described by its vehicles in running order; vehicle i's leading axle is the sum
 //! of the `length`s of the vehicles before it behind the train's leading axle. This module
-//! holds the description only (parameters, geometry, statics); the scenario keys are parsed
-//! in `config` and the dynamics are in `vehicle_bridge` (and the moving-force models of
-//! `beam`). SI units.
+//! holds the description (parameters, geometry, statics); the scenario keys are parsed in
+//! `config`, the dynamics are in `vehicle_bridge`, the moving-force passages in `beam`.
+//! SI units.
+//!
+//! * [`hslm`]: HSLM-A1 … A10 of EN 1991-2 Annex E.
 
+pub mod hslm;
 pub mod vehicle;
 
 pub use vehicle::{Articulated, BogieVehicle, MovingForces, QuarterCar, SprungMass, VehicleSpec};
@@ -17,4 +20,311 @@ pub struct Train {
     pub name: String,
     /// The vehicles, leading vehicle first.
     pub vehicles: Vec<VehicleSpec>,
+}
+
+/// One axle of a train.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Axle {
+    /// Distance behind the train's leading axle \[m\] (≥ 0).
+    pub offset: f64,
+    /// Static axle load \[N\] (downwards), from the vehicle's statics.
+    pub load: f64,
+}
+
+/// A train description that is not physically valid; names the key as written in a train
+/// table.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("train vehicle {vehicle} (`{key}` = {value}): {reason}")]
+pub struct TrainError {
+    /// Index of the vehicle in running order.
+    pub vehicle: usize,
+    /// The key.
+    pub key: &'static str,
+    /// Its value.
+    pub value: f64,
+    /// The allowed range.
+    pub reason: &'static str,
+}
+
+impl Train {
+    /// The axles in running order (offsets non-decreasing) with their static loads at
+    /// gravity `g` \[m/s²\]: each vehicle's statics with the suspension forces of a symmetric
+    /// body (a bogie vehicle's body rests half on each bogie, a bogie half on each wheelset;
+    /// an articulated train's end bogies carry half a body, its inner bogies two halves).
+    pub fn axles(&self, g: f64) -> Result<Vec<Axle>, TrainError> {
+        let mut axles = Vec::new();
+        let mut start = 0.0;
+        for (i, v) in self.vehicles.iter().enumerate() {
+            validate(i, v)?;
+            for (offset, load) in vehicle_axles(v, g) {
+                axles.push(Axle {
+                    offset: start + offset,
+                    load,
+                });
+            }
+            start += vehicle_length(v);
+        }
+        Ok(axles)
+    }
+
+    /// First axle to last axle \[m\].
+    pub fn length(&self) -> f64 {
+        self.axles(9.81)
+            .ok()
+            .and_then(|a| a.last().map(|a| a.offset))
+            .unwrap_or(0.0)
+    }
+
+    /// Total mass \[kg\] (moving forces: their loads / 9.81 m/s²).
+    pub fn mass(&self) -> f64 {
+        self.vehicles.iter().map(vehicle_mass).sum()
+    }
+}
+
+fn vehicle_length(v: &VehicleSpec) -> f64 {
+    match v {
+        VehicleSpec::MovingForces(m) => m.length,
+        VehicleSpec::QuarterCar(q) => q.length,
+        VehicleSpec::SprungMass(s) => s.length,
+        VehicleSpec::BogieVehicle(b) => b.length,
+        VehicleSpec::Articulated(a) => a.length,
+    }
+}
+
+fn vehicle_mass(v: &VehicleSpec) -> f64 {
+    match v {
+        VehicleSpec::MovingForces(m) => m.axle_loads.iter().sum::<f64>() / 9.81,
+        VehicleSpec::QuarterCar(q) => q.wheel_mass + q.body_mass,
+        VehicleSpec::SprungMass(s) => s.body_mass,
+        VehicleSpec::BogieVehicle(b) => b.body_mass + 2.0 * b.bogie_mass + 4.0 * b.wheelset_mass,
+        VehicleSpec::Articulated(a) => {
+            let n = a.bodies as f64;
+            n * a.body_mass + (n + 1.0) * (a.bogie_mass + 2.0 * a.wheelset_mass)
+        }
+    }
+}
+
+/// (offset behind the vehicle's leading axle, static load) of each axle.
+fn vehicle_axles(v: &VehicleSpec, g: f64) -> Vec<(f64, f64)> {
+    match v {
+        VehicleSpec::MovingForces(m) => m
+            .axle_positions
+            .iter()
+            .copied()
+            .zip(m.axle_loads.iter().copied())
+            .collect(),
+        VehicleSpec::QuarterCar(q) => vec![(0.0, (q.wheel_mass + q.body_mass) * g)],
+        VehicleSpec::SprungMass(s) => vec![(0.0, s.body_mass * g)],
+        VehicleSpec::BogieVehicle(b) => {
+            let load = (0.25 * b.body_mass + 0.5 * b.bogie_mass + b.wheelset_mass) * g;
+            [
+                0.0,
+                b.wheelbase,
+                b.bogie_spacing,
+                b.bogie_spacing + b.wheelbase,
+            ]
+            .into_iter()
+            .map(|x| (x, load))
+            .collect()
+        }
+        VehicleSpec::Articulated(a) => (0..=a.bodies)
+            .flat_map(|i| {
+                let bodies = if i == 0 || i == a.bodies { 0.5 } else { 1.0 };
+                let load = (0.5 * (bodies * a.body_mass + a.bogie_mass) + a.wheelset_mass) * g;
+                let x = i as f64 * a.bogie_spacing;
+                [(x, load), (x + a.wheelbase, load)]
+            })
+            .collect(),
+    }
+}
+
+/// Range checks of one vehicle's geometry and masses.
+fn validate(i: usize, v: &VehicleSpec) -> Result<(), TrainError> {
+    let err = |key, value, reason| TrainError {
+        vehicle: i,
+        key,
+        value,
+        reason,
+    };
+    let positive = |key: &'static str, value: f64| {
+        if value.is_finite() && value > 0.0 {
+            Ok(())
+        } else {
+            Err(err(key, value, "must be positive and finite"))
+        }
+    };
+    let non_negative = |key: &'static str, value: f64| {
+        if value.is_finite() && value >= 0.0 {
+            Ok(())
+        } else {
+            Err(err(key, value, "must be non-negative and finite"))
+        }
+    };
+    match v {
+        VehicleSpec::MovingForces(m) => {
+            non_negative("length", m.length)?;
+            if m.axle_positions.is_empty() || m.axle_positions.len() != m.axle_loads.len() {
+                return Err(err(
+                    "axle_positions",
+                    m.axle_positions.len() as f64,
+                    "one position per axle load, at least one axle",
+                ));
+            }
+            let mut previous = 0.0;
+            for &x in &m.axle_positions {
+                non_negative("axle_positions", x)?;
+                if x < previous {
+                    return Err(err("axle_positions", x, "must be non-decreasing"));
+                }
+                previous = x;
+            }
+            for &f in &m.axle_loads {
+                if !f.is_finite() {
+                    return Err(err("axle_loads", f, "must be finite"));
+                }
+            }
+        }
+        VehicleSpec::QuarterCar(q) => {
+            non_negative("length", q.length)?;
+            positive("wheel_mass", q.wheel_mass)?;
+            non_negative("body_mass", q.body_mass)?;
+        }
+        VehicleSpec::SprungMass(s) => {
+            non_negative("length", s.length)?;
+            positive("body_mass", s.body_mass)?;
+        }
+        VehicleSpec::BogieVehicle(b) => {
+            for (key, value) in [
+                ("body_mass", b.body_mass),
+                ("bogie_spacing", b.bogie_spacing),
+                ("wheelbase", b.wheelbase),
+                ("wheelset_mass", b.wheelset_mass),
+            ] {
+                positive(key, value)?;
+            }
+            non_negative("bogie_mass", b.bogie_mass)?;
+            if b.bogie_spacing < b.wheelbase {
+                return Err(err(
+                    "bogie_spacing",
+                    b.bogie_spacing,
+                    "must be at least the wheelbase",
+                ));
+            }
+            if b.length < b.bogie_spacing + b.wheelbase {
+                return Err(err(
+                    "length",
+                    b.length,
+                    "must be at least bogie_spacing + wheelbase",
+                ));
+            }
+        }
+        VehicleSpec::Articulated(a) => {
+            if a.bodies == 0 {
+                return Err(err("bodies", 0.0, "at least one body"));
+            }
+            for (key, value) in [
+                ("body_mass", a.body_mass),
+                ("bogie_spacing", a.bogie_spacing),
+                ("wheelbase", a.wheelbase),
+                ("wheelset_mass", a.wheelset_mass),
+            ] {
+                positive(key, value)?;
+            }
+            if a.length < a.bodies as f64 * a.bogie_spacing + a.wheelbase {
+                return Err(err(
+                    "length",
+                    a.length,
+                    "must be at least bodies × bogie_spacing + wheelbase",
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn manchester() -> BogieVehicle {
+        // The "Manchester benchmark" car (references.md §T3).
+        BogieVehicle {
+            length: 24.0,
+            body_mass: 32_000.0,
+            body_pitch_inertia: 1.97e6,
+            bogie_spacing: 19.0,
+            bogie_mass: 2615.0,
+            bogie_pitch_inertia: 1476.0,
+            wheelbase: 2.56,
+            wheelset_mass: 1813.0,
+            primary_stiffness: 2.4e6,
+            primary_damping: 8e3,
+            secondary_stiffness: 8.6e5,
+            secondary_damping: 4e4,
+        }
+    }
+
+    #[test]
+    fn bogie_vehicle_statics_give_the_published_wheelset_load() {
+        let t = Train {
+            name: "two cars".into(),
+            vehicles: vec![VehicleSpec::BogieVehicle(manchester()); 2],
+        };
+        let axles = t.axles(9.81).unwrap();
+        assert_eq!(axles.len(), 8);
+        // (32,000 + 2 × 2,615 + 4 × 1,813) × 9.81 / 4 = 109.09 kN.
+        for a in &axles {
+            assert!((a.load / 1e3 - 109.09).abs() < 0.005, "{}", a.load);
+        }
+        let offsets: Vec<f64> = axles.iter().map(|a| a.offset).collect();
+        assert_eq!(offsets[..4], [0.0, 2.56, 19.0, 21.56]);
+        assert!((offsets[4] - 24.0).abs() < 1e-12 && (t.length() - 45.56).abs() < 1e-12);
+        assert!((t.mass() - 2.0 * 44_482.0).abs() < 1e-9);
+        let total: f64 = axles.iter().map(|a| a.load).sum();
+        assert!((total - t.mass() * 9.81).abs() < 1e-6 * total);
+    }
+
+    #[test]
+    fn articulated_statics_balance_the_weight() {
+        let a = Articulated {
+            length: 3.0 * 18.7 + 3.0,
+            bodies: 3,
+            body_mass: 28_000.0,
+            body_pitch_inertia: 1.5e6,
+            bogie_spacing: 18.7,
+            bogie_mass: 3000.0,
+            bogie_pitch_inertia: 2000.0,
+            wheelbase: 3.0,
+            wheelset_mass: 2000.0,
+            primary_stiffness: 2.4e6,
+            primary_damping: 2e4,
+            secondary_stiffness: 8e5,
+            secondary_damping: 3e4,
+        };
+        let t = Train {
+            name: "articulated".into(),
+            vehicles: vec![VehicleSpec::Articulated(a)],
+        };
+        let axles = t.axles(9.81).unwrap();
+        assert_eq!(axles.len(), 8);
+        let total: f64 = axles.iter().map(|a| a.load).sum();
+        assert!((total - t.mass() * 9.81).abs() < 1e-6 * total);
+        // Inner bogies carry a whole body, end bogies half of one.
+        let end = (0.5 * (0.5 * 28_000.0 + 3000.0) + 2000.0) * 9.81;
+        let inner = (0.5 * (28_000.0 + 3000.0) + 2000.0) * 9.81;
+        assert!((axles[0].load - end).abs() < 1e-6 && (axles[2].load - inner).abs() < 1e-6);
+    }
+
+    #[test]
+    fn bad_geometry_names_the_key() {
+        let mut b = manchester();
+        b.length = 10.0;
+        let t = Train {
+            name: "x".into(),
+            vehicles: vec![VehicleSpec::BogieVehicle(b)],
+        };
+        let e = t.axles(9.81).unwrap_err();
+        assert_eq!(e.key, "length");
+        assert!(e.to_string().contains("bogie_spacing + wheelbase"), "{e}");
+    }
 }

@@ -1,0 +1,160 @@
+//! HSLM-A1 … A10, the universal dynamic trains of EN 1991-2 Annex E (Table E.4, Figure E.8;
+//! references.md §T1), as moving-force trains.
+//!
+//! Each train: power car, end coach, N articulated intermediate coaches, end coach, power car;
+//! every axle carries the point force P. The geometry, from the leading axle:
+//!
+//! * power car: four axles 3 m, 11 m, 3 m apart (two bogies of 3 m wheelbase, 11 m between
+//!   their inner axles);
+//! * 3.525 m from the power car's last axle to the end coach's first axle;
+//! * end coach: an outer bogie of axle spacing d whose first axle is 3.525/2 m behind the
+//!   coupling point between power car and end coach, and the first articulation bogie whose
+//!   centre is D behind that coupling point: its first axle is D − 1.5 d − 1.7625 m behind
+//!   the outer bogie's second axle;
+//! * N + 1 articulation bogies (axle spacing d) shared by neighbouring coaches, their centres
+//!   D apart;
+//! * the rear end coach and power car mirror the front.
+//!
+//! Axles: 8 + 2 (N + 3) (A1: N = 18, 50 axles; A10: N = 11, 36 axles). First axle to last:
+//! 37.525 + (N + 2) D \[m\] (A1: 397.525 m). The regular coach length D is what makes the
+//! train resonate a bridge of first frequency n₀ at v_i = n₀ D / i.
+
+use super::{MovingForces, Train, VehicleSpec};
+
+/// One HSLM-A train's parameters (EN 1991-2 Table E.4).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HslmParameters {
+    /// Number of intermediate coaches N.
+    pub coaches: usize,
+    /// Coach length D \[m\].
+    pub coach_length: f64,
+    /// Bogie axle spacing d \[m\].
+    pub axle_spacing: f64,
+    /// Point force P per axle \[N\].
+    pub point_force: f64,
+}
+
+/// Table E.4 of EN 1991-2: A1 … A10 (N, D \[m\], d \[m\], P \[kN\]).
+pub const HSLM_A: [(usize, f64, f64, f64); 10] = [
+    (18, 18.0, 2.0, 170.0),
+    (17, 19.0, 3.5, 200.0),
+    (16, 20.0, 2.0, 180.0),
+    (15, 21.0, 3.0, 190.0),
+    (14, 22.0, 2.0, 170.0),
+    (13, 23.0, 2.0, 180.0),
+    (13, 24.0, 2.0, 190.0),
+    (12, 25.0, 2.5, 190.0),
+    (11, 26.0, 2.0, 210.0),
+    (11, 27.0, 2.0, 210.0),
+];
+
+/// Power-car axle spacings \[m\] (Figure E.8).
+const POWER_CAR: [f64; 3] = [3.0, 11.0, 3.0];
+/// From the power car's last axle to the end coach's first axle \[m\] (Figure E.8).
+const POWER_CAR_TO_END_COACH: f64 = 3.525;
+
+/// The parameters of HSLM-A`number` (1 … 10).
+pub fn parameters(number: usize) -> Option<HslmParameters> {
+    let (coaches, coach_length, axle_spacing, force_kn) = *HSLM_A.get(number.checked_sub(1)?)?;
+    Some(HslmParameters {
+        coaches,
+        coach_length,
+        axle_spacing,
+        point_force: force_kn * 1e3,
+    })
+}
+
+/// The train `HSLM-A1` … `HSLM-A10` by name (case-insensitive, `HSLM-A3` or `A3`).
+pub fn by_name(name: &str) -> Option<Train> {
+    let upper = name.trim().to_ascii_uppercase();
+    let number = upper
+        .strip_prefix("HSLM-")
+        .unwrap_or(&upper)
+        .strip_prefix('A')?
+        .parse::<usize>()
+        .ok()?;
+    parameters(number).map(|p| train(&format!("HSLM-A{number}"), p))
+}
+
+/// All ten trains, A1 first.
+pub fn all() -> Vec<Train> {
+    (1..=10).filter_map(|i| by_name(&format!("A{i}"))).collect()
+}
+
+/// The axle offsets behind the leading axle \[m\] of an HSLM-A train with `p`'s geometry.
+pub fn axle_offsets(p: HslmParameters) -> Vec<f64> {
+    let (d, big_d) = (p.axle_spacing, p.coach_length);
+    let end_coach_gap = big_d - 1.5 * d - 0.5 * POWER_CAR_TO_END_COACH;
+    let mut gaps: Vec<f64> = POWER_CAR.to_vec();
+    gaps.extend([POWER_CAR_TO_END_COACH, d, end_coach_gap]);
+    for i in 0..=p.coaches {
+        gaps.push(d);
+        if i < p.coaches {
+            gaps.push(big_d - d);
+        }
+    }
+    gaps.extend([end_coach_gap, d, POWER_CAR_TO_END_COACH]);
+    gaps.extend(POWER_CAR.iter().rev());
+    let mut offsets = Vec::with_capacity(gaps.len() + 1);
+    offsets.push(0.0);
+    for g in gaps {
+        let last = *offsets.last().unwrap_or(&0.0);
+        offsets.push(last + g);
+    }
+    offsets
+}
+
+/// HSLM-A with parameters `p` as one moving-force vehicle named `name`.
+pub fn train(name: &str, p: HslmParameters) -> Train {
+    let axle_positions = axle_offsets(p);
+    let span = axle_positions.last().copied().unwrap_or(0.0);
+    Train {
+        name: name.to_string(),
+        vehicles: vec![VehicleSpec::MovingForces(MovingForces {
+            length: span,
+            axle_loads: vec![p.point_force; axle_positions.len()],
+            axle_positions,
+        })],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn axle_counts_lengths_and_loads_follow_the_standard() {
+        for (i, &(n, d_big, d, p)) in HSLM_A.iter().enumerate() {
+            let train = by_name(&format!("HSLM-A{}", i + 1)).unwrap();
+            let axles = train.axles(9.81).unwrap();
+            assert_eq!(axles.len(), 8 + 2 * (n + 3), "A{}", i + 1);
+            let span = axles.last().unwrap().offset;
+            assert!(
+                (span - (37.525 + (n + 2) as f64 * d_big)).abs() < 1e-9,
+                "A{}",
+                i + 1
+            );
+            assert!(axles.iter().all(|a| a.load == p * 1e3));
+            // Articulation bogies: centres D apart, axle spacing d.
+            let first = 8 / 2 + 2; // power car (4) + end coach outer bogie (2)
+            assert!((axles[first + 1].offset - axles[first].offset - d).abs() < 1e-12);
+            assert!((axles[first + 2].offset - axles[first].offset - d_big).abs() < 1e-9);
+        }
+        assert_eq!(by_name("HSLM-A1").unwrap().axles(9.81).unwrap().len(), 50);
+        assert_eq!(by_name("a10").unwrap().axles(9.81).unwrap().len(), 36);
+        assert!((by_name("A1").unwrap().length() - 397.525).abs() < 1e-9);
+        assert!(by_name("HSLM-A11").is_none() && by_name("HSLM-B1").is_none());
+        assert_eq!(all().len(), 10);
+    }
+
+    #[test]
+    fn the_train_is_symmetric() {
+        for t in all() {
+            let axles = t.axles(9.81).unwrap();
+            let span = axles.last().unwrap().offset;
+            for (a, b) in axles.iter().zip(axles.iter().rev()) {
+                assert!((a.offset - (span - b.offset)).abs() < 1e-9, "{}", t.name);
+            }
+        }
+    }
+}
