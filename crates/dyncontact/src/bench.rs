@@ -180,3 +180,84 @@ pub fn beam() -> Result<()> {
     }
     Ok(())
 }
+
+/// The HSLM-A envelope of issue #12: a 20 m simply supported bridge with f1 = 5 Hz
+/// (EI from ω1 = (π/L)² √(EI/m), m = 12 t/m), 3 modes, ζ = 1 %, 10 trains × 57 speeds
+/// (140 … 420 km/h by 5 km/h) = 570 passages with their free vibration.
+pub const SWEEP_BENCH: &str = r#"kind = "sweep"
+[bridge]
+length = 20.0
+EI = 1.9452e10
+mass_per_length = 12000.0
+supports = "simply_supported"
+modes = 3
+damping_ratio = 0.01
+[trains]
+names = ["HSLM-A"]
+[speeds]
+from = 38.88888888888889
+to = 116.66666666666667
+step = 1.3888888888888888
+"#;
+
+/// `dyncontact bench sweep`: wall time of the HSLM-A envelope on all cores and on one, and a
+/// check that both give identical results.
+pub fn sweep() -> Result<()> {
+    let config =
+        match sim::config::load(SWEEP_BENCH, std::path::Path::new("."), &Default::default())? {
+            sim::config::ScenarioConfig::Sweep(c) => *c,
+            _ => anyhow::bail!("the sweep benchmark is not a sweep scenario"),
+        };
+    let run = |threads: usize| -> Result<(f64, Vec<sim::sweep::Passage>)> {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()?;
+        let mut best = f64::INFINITY;
+        let mut result = Vec::new();
+        for _ in 0..3 {
+            let start = Instant::now();
+            result = pool.install(|| {
+                sim::sweep::run(
+                    config.bridge.basis.as_ref(),
+                    &config.bridge.damping,
+                    &config.spec,
+                    sim::sweep::Shard::ALL,
+                    &|| true,
+                )
+            })?;
+            best = best.min(start.elapsed().as_secs_f64());
+        }
+        Ok((best, result))
+    };
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let (t_all, all) = run(cores)?;
+    let (t_one, one) = run(1)?;
+    let steps: usize = all.iter().map(|p| p.peaks.steps).sum();
+    println!(
+        "HSLM-A envelope: 20 m simply supported, f1 = {:.3} Hz, {} modes, dt = {:.3e} s, {} passages, {} time steps in all",
+        config.first_frequency,
+        config.bridge.basis.n_modes(),
+        config.spec.dt,
+        all.len(),
+        steps
+    );
+    println!(
+        "{:>8} {:>12} {:>16} {:>14}",
+        "threads", "wall [s]", "µs per passage", "ns per step"
+    );
+    for (threads, t) in [(cores, t_all), (1, t_one)] {
+        println!(
+            "{threads:>8} {t:>12.4} {:>16.1} {:>14.2}",
+            1e6 * t / all.len() as f64,
+            1e9 * t / steps as f64
+        );
+    }
+    println!(
+        "results with {cores} threads and 1 thread: {} (target: the envelope in <= 1 s on 2 cores)",
+        if all == one { "identical" } else { "DIFFERENT" }
+    );
+    if all != one {
+        anyhow::bail!("the sweep depends on the thread count");
+    }
+    Ok(())
+}

@@ -17,6 +17,7 @@ mod modes_cli;
 mod moving_load_cli;
 mod output;
 mod plot;
+mod sweep_cli;
 mod vehicle_bridge_cli;
 mod vehicle_bridge_output;
 
@@ -108,6 +109,34 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Speed sweep (`kind = "sweep"`): every train at every speed, the Eurocode deck
+    /// acceleration check, plots (docs/sweep.md).
+    Sweep {
+        /// Sweep file (TOML, kind = "sweep").
+        file: PathBuf,
+        /// Output directory (summary.json, sweep.csv, plots; shard.json with --shard).
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+        /// Print the JSON summary on standard output.
+        #[arg(long)]
+        json: bool,
+        /// Run only the K-th of N disjoint slices of the (train, speed) list and write
+        /// shard.json (combine with `dyncontact sweep-merge`).
+        #[arg(long)]
+        shard: Option<String>,
+    },
+    /// Combine the shard.json of `dyncontact sweep --shard K/N` runs into the outputs of the
+    /// whole sweep.
+    SweepMerge {
+        /// The shards' output directories.
+        dirs: Vec<PathBuf>,
+        /// Output directory.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+        /// Print the JSON summary on standard output.
+        #[arg(long)]
+        json: bool,
+    },
     /// Benchmarks: print a table of timings.
     Bench {
         /// What to benchmark.
@@ -132,6 +161,9 @@ enum BenchTarget {
     Coupling,
     /// Tangential contact: steady rolling on 44 × 44 (time, sweeps) and a 41-point creep curve.
     Tangential,
+    /// The HSLM-A envelope on a 20 m simply supported bridge (f1 = 5 Hz, 3 modes): 10 trains ×
+    /// 57 speeds, 140 … 420 km/h.
+    Sweep,
 }
 
 fn main() {
@@ -176,7 +208,31 @@ fn run_cli() -> Result<()> {
             BenchTarget::Integrators => ball_drop_cli::bench_integrators(1e-6),
             BenchTarget::Coupling => vehicle_bridge_cli::bench(vehicle_bridge_cli::DEFAULT),
             BenchTarget::Tangential => bench_tangential::tangential(),
+            BenchTarget::Sweep => bench::sweep(),
         },
+        Command::Sweep {
+            file,
+            out,
+            json,
+            shard,
+        } => {
+            let shard = match shard {
+                Some(s) => sweep_cli::parse_shard(&s)?,
+                None => sim::sweep::Shard::ALL,
+            };
+            let text = read(&file)?;
+            match sim::config::load(&text, base_dir(&file), &Default::default())
+                .map_err(|e| bad_input(e.into()))?
+            {
+                ScenarioConfig::Sweep(config) => sweep_cli::run(*config, &text, &out, json, shard),
+                other => Err(bad_input(anyhow::anyhow!(
+                    "{} is a {} scenario, not a sweep: use `dyncontact run`",
+                    file.display(),
+                    other.kind()
+                ))),
+            }
+        }
+        Command::SweepMerge { dirs, out, json } => sweep_cli::merge(&dirs, &out, json),
         Command::CreepCurve {
             file,
             creepage_x,
@@ -231,6 +287,9 @@ fn run_scenario(
         ScenarioConfig::Contact(case) => run_contact(*case, json, Some(out)),
         ScenarioConfig::MovingLoad(config) => moving_load_cli::run(*config, out, json),
         ScenarioConfig::VehicleBridge(config) => vehicle_bridge_cli::run(*config, out, json),
+        ScenarioConfig::Sweep(config) => {
+            sweep_cli::run(*config, &text, out, json, sim::sweep::Shard::ALL)
+        }
     }
 }
 

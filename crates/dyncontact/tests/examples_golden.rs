@@ -56,7 +56,7 @@ fn check(file: &str, args: &[&str], quotes: &[Quote], source: &str) {
     let out_dir = dir.path().join("out");
     let mut argv: Vec<&str> = vec![args[0], path.to_str().unwrap()];
     argv.extend_from_slice(&args[1..]);
-    if args[0] == "run" || args[0] == "creep-curve" {
+    if args[0] == "run" || args[0] == "creep-curve" || args[0] == "sweep" {
         argv.extend(["--out", out_dir.to_str().unwrap()]);
     }
     argv.push("--json");
@@ -90,7 +90,7 @@ fn every_example_has_a_golden_test() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .filter(|n| n.ends_with(".toml"))
         .collect();
-    assert_eq!(files.len(), 17, "{files:?}");
+    assert_eq!(files.len(), 18, "{files:?}");
     let missing: Vec<&String> = files
         .iter()
         .filter(|f| !this.contains(&format!("\"{f}\"")))
@@ -284,6 +284,28 @@ fn bridge_examples_match_the_docs() {
             q("max_midspan_acceleration", 6.819, 0.001),
         ],
         docs,
+    );
+}
+
+/// docs/sweep.md: the HSLM-A sweep over a 20 m prestressed-concrete span.
+#[test]
+fn sweep_example_matches_the_docs() {
+    check(
+        "sweep_hslm.toml",
+        &["sweep"],
+        &[
+            n("runs", 570.0),
+            n("modes", 3.0),
+            q("damping_ratio", 0.012965, 0.000001),
+            q("checks/max_acceleration", 41.80, 0.01),
+            q("checks/governing_speed", 115.28, 0.01),
+            q("checks/first_frequency", 5.000, 0.001),
+            q("trains/0/max_acceleration", 28.99, 0.01),
+            q("trains/0/speed_at_max_acceleration", 90.28, 0.01),
+            q("trains/0/dynamic_factor", 6.569, 0.001),
+            q("trains/9/max_acceleration", 13.71, 0.01),
+        ],
+        "docs/sweep.md",
     );
 }
 

@@ -11,5 +11,6 @@
 
 pub mod ball_drop;
 pub mod config;
+pub mod sweep;
 pub mod train;
 pub mod vehicle_bridge;

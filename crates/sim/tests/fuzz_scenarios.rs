@@ -384,6 +384,24 @@ fn simulate(read: Read, deadline: Instant) -> RunResult {
                 }
                 Ok(finite(&r.deflection) && finite(&r.acceleration) && finite(&r.bending_moment))
             }
+            ScenarioConfig::Sweep(c) => {
+                let tick = || !past();
+                match sim::sweep::run(
+                    c.bridge.basis.as_ref(),
+                    &c.bridge.damping,
+                    &c.spec,
+                    sim::sweep::Shard::ALL,
+                    &tick,
+                ) {
+                    Ok(p) => Ok(p.iter().all(|p| {
+                        finite(&p.peaks.deflection)
+                            && finite(&p.peaks.acceleration)
+                            && finite(&p.peaks.static_deflection)
+                    })),
+                    Err(sim::sweep::SweepError::Interrupted { .. }) => Err(TIME_LIMIT.into()),
+                    Err(e) => Err(e.to_string()),
+                }
+            }
             ScenarioConfig::VehicleBridge(v) => {
                 let v = *v;
                 let mut s =

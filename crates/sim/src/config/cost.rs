@@ -81,6 +81,27 @@ pub fn estimate(config: &ScenarioConfig) -> Option<WorkEstimate> {
                 keys: "integrator.dt, bridge.length / load.speed, output.free_vibration, bridge.modes, load.axles, integrator.method",
             })
         }
+        ScenarioConfig::Sweep(c) => {
+            let n = c.bridge.basis.n_modes() as f64;
+            let length = c.bridge.basis.length();
+            let mut steps = 0.0;
+            let mut axle_steps = 0.0;
+            for t in &c.spec.trains {
+                let (span, axles) = (t.length(), t.axles(c.spec.gravity).map_or(0, |a| a.len()));
+                for &v in &c.spec.speeds {
+                    let s = ((length + span) / v + c.spec.free_vibration) / c.spec.dt;
+                    steps += s;
+                    // Axles on the span at a time: about axles × L / (L + train length).
+                    axle_steps += s * axles as f64 * length / (length + span);
+                }
+            }
+            Some(WorkEstimate {
+                steps,
+                per_step: n * (10.0 + 3.0 * c.spec.points.len() as f64)
+                    + 20.0 * axle_steps / steps.max(1.0),
+                keys: "speeds.from/to/step, trains.names, integrator.dt, bridge.modes",
+            })
+        }
         ScenarioConfig::VehicleBridge(v) => {
             let s = &v.scenario;
             let wheels = s.wheels.len() as f64;

@@ -55,10 +55,17 @@ pub mod contact;
 pub mod cost;
 pub mod integrator;
 pub mod moving_load;
+pub mod sweep;
 pub mod vehicle_bridge;
 
 /// Scenario kinds of [`load`].
-pub const SCENARIO_KINDS: &[&str] = &["ball_drop", "contact", "moving_load", "vehicle_bridge"];
+pub const SCENARIO_KINDS: &[&str] = &[
+    "ball_drop",
+    "contact",
+    "moving_load",
+    "sweep",
+    "vehicle_bridge",
+];
 
 /// A scenario of `dyncontact run`, validated and ready for its simulation.
 pub enum ScenarioConfig {
@@ -70,6 +77,8 @@ pub enum ScenarioConfig {
     MovingLoad(Box<moving_load::MovingLoadConfig>),
     /// `kind = "vehicle_bridge"`.
     VehicleBridge(Box<vehicle_bridge::VehicleBridgeConfig>),
+    /// `kind = "sweep"`.
+    Sweep(Box<sweep::SweepConfig>),
 }
 
 impl ScenarioConfig {
@@ -80,6 +89,7 @@ impl ScenarioConfig {
             Self::Contact(_) => "contact",
             Self::MovingLoad(_) => "moving_load",
             Self::VehicleBridge(_) => "vehicle_bridge",
+            Self::Sweep(_) => "sweep",
         }
     }
 }
@@ -150,6 +160,10 @@ fn build(
         "vehicle_bridge" => {
             let file = deserialize(table, text)?;
             vehicle_bridge::build(file).map(|c| ScenarioConfig::VehicleBridge(Box::new(c)))
+        }
+        "sweep" => {
+            let file = deserialize(table, text)?;
+            sweep::build(file).map(|c| ScenarioConfig::Sweep(Box::new(c)))
         }
         other => bail!(
             "unknown `kind` = \"{other}\" (known kinds: {})",

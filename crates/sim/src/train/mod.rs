@@ -247,7 +247,7 @@ mod tests {
     use super::*;
 
     fn manchester() -> BogieVehicle {
-        // The "Manchester benchmark" car (references.md §T3).
+        // The "Manchester benchmark" car (references.md §T4).
         BogieVehicle {
             length: 24.0,
             body_mass: 32_000.0,

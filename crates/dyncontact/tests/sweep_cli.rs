@@ -1,0 +1,138 @@
+//! `dyncontact sweep` and `sweep-merge`: shards merge into the same outputs as one run, bad
+//! input exits with 2 and names the key.
+
+mod support;
+
+use support::{code, dyncontact, write};
+
+const SWEEP: &str = r#"kind = "sweep"
+[bridge]
+length = 15.0
+EI = 7.5e9
+mass_per_length = 10000.0
+supports = "simply_supported"
+modes = 3
+damping_ratio = 0.02
+[trains]
+names = ["HSLM-A1", "HSLM-A7"]
+[[trains.train]]
+name = "two bogies"
+axle_positions = [0.0, 2.5, 17.5, 20.0]
+axle_loads = [150e3, 150e3, 150e3, 150e3]
+[speeds]
+from = 40.0
+to = 80.0
+step = 5.0
+[output]
+points = [7.5, 5.0]
+"#;
+
+fn summary_without_wall_time(dir: &std::path::Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(dir.join("summary.json")).unwrap();
+    let mut v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    v.as_object_mut().unwrap().remove("wall_time_s");
+    v
+}
+
+#[test]
+fn shards_merge_into_the_outputs_of_one_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = write(dir.path(), "sweep.toml", SWEEP);
+    let whole = dir.path().join("whole");
+    let o = dyncontact(&["sweep", &file, "--out", whole.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let mut shard_dirs = Vec::new();
+    for k in 1..=3 {
+        let d = dir.path().join(format!("shard{k}"));
+        let shard = format!("{k}/3");
+        let o = dyncontact(&[
+            "sweep",
+            &file,
+            "--out",
+            d.to_str().unwrap(),
+            "--shard",
+            &shard,
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        assert!(d.join("shard.json").exists() && !d.join("summary.json").exists());
+        shard_dirs.push(d);
+    }
+    let merged = dir.path().join("merged");
+    let mut args = vec!["sweep-merge"];
+    // Any order of the shards.
+    for d in shard_dirs.iter().rev() {
+        args.push(d.to_str().unwrap());
+    }
+    args.extend(["--out", merged.to_str().unwrap()]);
+    let o = dyncontact(&args);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(
+        summary_without_wall_time(&whole),
+        summary_without_wall_time(&merged)
+    );
+    let csv = |d: &std::path::Path| std::fs::read(d.join("sweep.csv")).unwrap();
+    assert_eq!(csv(&whole), csv(&merged), "sweep.csv must be bit-identical");
+    let s = summary_without_wall_time(&whole);
+    assert_eq!(s["runs"], 27);
+    assert_eq!(s["trains"].as_array().unwrap().len(), 3);
+    assert_eq!(s["envelope"]["speeds"].as_array().unwrap().len(), 9);
+    // One row per (train, speed, point) plus the header.
+    assert_eq!(
+        String::from_utf8(csv(&whole)).unwrap().lines().count(),
+        1 + 27 * 2
+    );
+    for png in ["acceleration.png", "deflection.png", "governing.png"] {
+        assert!(
+            std::fs::metadata(whole.join(png)).unwrap().len() > 1000,
+            "{png}"
+        );
+    }
+
+    // A missing shard is refused.
+    let o = dyncontact(&[
+        "sweep-merge",
+        shard_dirs[0].to_str().unwrap(),
+        shard_dirs[2].to_str().unwrap(),
+        "--out",
+        dir.path().join("bad").to_str().unwrap(),
+    ]);
+    assert_eq!(code(&o), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("shard 2/3 is missing"));
+}
+
+#[test]
+fn bad_sweep_input_names_the_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = [
+        (SWEEP.replace("\"HSLM-A7\"", "\"ICE9\""), "ICE9"),
+        (SWEEP.replace("step = 5.0", "step = 0.0"), "`step`"),
+        (
+            SWEEP.replace("[trains]", "[trains]\nmodel = \"interaction\""),
+            "interaction",
+        ),
+        (
+            SWEEP.replace("damping_ratio = 0.02", "damping = \"eurocode\""),
+            "needs `type`",
+        ),
+        (
+            SWEEP.replace("points = [7.5, 5.0]", "points = [70.0]"),
+            "points",
+        ),
+    ];
+    for (text, key) in cases {
+        let file = write(dir.path(), "bad.toml", &text);
+        let o = dyncontact(&[
+            "sweep",
+            &file,
+            "--out",
+            dir.path().join("o").to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(code(&o), Some(2), "{err}");
+        assert!(err.contains(key), "{key}: {err}");
+    }
+    let file = write(dir.path(), "ok.toml", SWEEP);
+    let o = dyncontact(&["sweep", &file, "--shard", "4/3"]);
+    assert_eq!(code(&o), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("--shard 4/3"));
+}

@@ -1,0 +1,155 @@
+//! Speed sweeps: every train at every speed over one bridge, the moving-force model
+//! (references.md §T2). Each passage is a [`beam::PassagePlan`] run (exact modal recurrence
+//! for piecewise-linear modal forces, peaks only); the passages are independent and run on all
+//! cores with `rayon`, each result stored at its (train, speed) index, so the results do not
+//! depend on the number of threads or on the order in which passages finish.
+//!
+//! * [`eurocode`]: EN 1991-2 / EN 1990 A2 damping, modes and limits;
+//! * [`summary`]: per-train maxima, the envelope over trains, the check.
+//!
+//! A sweep can be cut into disjoint shards ([`Shard`]) whose passages, concatenated in any
+//! order, summarise exactly as the whole sweep (`dyncontact sweep --shard`, `sweep-merge`).
+
+pub mod eurocode;
+pub mod summary;
+
+use beam::{Axle as BeamAxle, ModalBasis, ModalDamping, PassagePeaks, PassagePlan};
+use rayon::prelude::*;
+
+use crate::train::{Train, TrainError};
+
+/// A sweep, validated (by `config::sweep`).
+#[derive(Debug, Clone)]
+pub struct SweepSpec {
+    /// The trains.
+    pub trains: Vec<Train>,
+    /// The speeds \[m/s\], increasing.
+    pub speeds: Vec<f64>,
+    /// Output points x \[m\].
+    pub points: Vec<f64>,
+    /// Time step \[s\].
+    pub dt: f64,
+    /// Free vibration after the last axle has left \[s\].
+    pub free_vibration: f64,
+    /// Gravity \[m/s²\] for the static axle loads of vehicle models.
+    pub gravity: f64,
+}
+
+/// The K-th (1-based) of N disjoint slices of the (train, speed) list: passage i belongs to
+/// shard (i mod N) + 1 (interleaved, so every shard gets a share of slow and fast passages).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Shard {
+    /// K, 1 … N.
+    pub index: usize,
+    /// N ≥ 1.
+    pub count: usize,
+}
+
+impl Shard {
+    /// The whole sweep.
+    pub const ALL: Shard = Shard { index: 1, count: 1 };
+
+    /// Whether passage `i` (train-major order) belongs to this shard.
+    pub fn contains(&self, i: usize) -> bool {
+        i % self.count == self.index - 1
+    }
+}
+
+/// The peaks of one passage.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Passage {
+    /// Index of the train in [`SweepSpec::trains`].
+    pub train: usize,
+    /// Index of the speed in [`SweepSpec::speeds`].
+    pub speed: usize,
+    /// Peaks at the output points.
+    pub peaks: PassagePeaks,
+}
+
+/// A sweep that cannot run.
+#[derive(Debug, thiserror::Error)]
+pub enum SweepError {
+    /// The bridge model or a passage failed.
+    #[error("{0}")]
+    Beam(#[from] beam::BeamError),
+    /// A train description is invalid.
+    #[error("{0}")]
+    Train(#[from] TrainError),
+    /// Stopped by the caller (an interrupt).
+    #[error("the sweep was interrupted after {done} of {total} passages")]
+    Interrupted {
+        /// Passages completed.
+        done: usize,
+        /// Passages of the shard.
+        total: usize,
+    },
+}
+
+/// The axles of every train as `beam` axles (offset-sorted), computed once.
+pub fn train_axles(spec: &SweepSpec) -> Result<Vec<Vec<BeamAxle>>, SweepError> {
+    spec.trains
+        .iter()
+        .map(|t| {
+            let mut axles: Vec<BeamAxle> = t
+                .axles(spec.gravity)?
+                .into_iter()
+                .map(|a| BeamAxle {
+                    offset: a.offset,
+                    force: a.load,
+                })
+                .collect();
+            axles.sort_by(|a, b| a.offset.total_cmp(&b.offset));
+            Ok(axles)
+        })
+        .collect()
+}
+
+/// Runs the passages of `shard`, in parallel; `tick` is called after each passage and returns
+/// false to stop the sweep (an interrupt). Results in train-major order.
+pub fn run(
+    basis: &(dyn ModalBasis + Sync),
+    damping: &ModalDamping,
+    spec: &SweepSpec,
+    shard: Shard,
+    tick: &(dyn Fn() -> bool + Sync),
+) -> Result<Vec<Passage>, SweepError> {
+    let plan = PassagePlan::new(basis, damping, spec.dt, &spec.points)?;
+    let axles = train_axles(spec)?;
+    let ns = spec.speeds.len();
+    let jobs: Vec<(usize, usize)> = (0..spec.trains.len() * ns)
+        .filter(|&i| shard.contains(i))
+        .map(|i| (i / ns, i % ns))
+        .collect();
+    let total = jobs.len();
+    let results: Vec<Option<Result<Passage, SweepError>>> = jobs
+        .par_iter()
+        .map_init(
+            || plan.work(),
+            |work, &(train, speed)| {
+                if !tick() {
+                    return None;
+                }
+                Some(
+                    plan.peaks(
+                        basis,
+                        &axles[train],
+                        spec.speeds[speed],
+                        spec.free_vibration,
+                        work,
+                    )
+                    .map(|peaks| Passage {
+                        train,
+                        speed,
+                        peaks,
+                    })
+                    .map_err(SweepError::from),
+                )
+            },
+        )
+        .collect();
+    let done = results.iter().filter(|r| r.is_some()).count();
+    if done < total {
+        return Err(SweepError::Interrupted { done, total });
+    }
+    results.into_iter().flatten().collect()
+}

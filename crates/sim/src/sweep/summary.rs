@@ -1,0 +1,195 @@
+//! The results of a sweep: per-train maxima, the envelope over trains at each speed, and the
+//! deck-acceleration check (EN 1990 A2; references.md §T2). Serialised as the `summary.json`
+//! of `dyncontact sweep` (keys documented in docs/sweep.md).
+
+use serde::Serialize;
+
+use super::eurocode::{Track, resonance_speeds};
+use super::{Passage, SweepSpec};
+use crate::train::hslm;
+
+/// One train over all speeds.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct TrainSummary {
+    /// Train name.
+    pub name: String,
+    /// Axles.
+    pub axles: usize,
+    /// Peak deck acceleration over speeds and output points \[m/s²\].
+    pub max_acceleration: f64,
+    /// Speed of that peak \[m/s\].
+    pub speed_at_max_acceleration: f64,
+    /// Peak deflection over speeds and output points \[m\].
+    pub max_deflection: f64,
+    /// Speed of that peak \[m/s\].
+    pub speed_at_max_deflection: f64,
+    /// φ'_dyn = max over speeds of (peak dynamic deflection / peak quasi-static deflection).
+    pub dynamic_factor: f64,
+    /// Speed of φ'_dyn \[m/s\].
+    pub speed_at_dynamic_factor: f64,
+}
+
+/// The maxima over all trains at each speed.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct Envelope {
+    /// Speeds \[m/s\].
+    pub speeds: Vec<f64>,
+    /// Peak deck acceleration \[m/s²\].
+    pub max_acceleration: Vec<f64>,
+    /// Peak deflection \[m\].
+    pub max_deflection: Vec<f64>,
+    /// φ' (the largest over trains).
+    pub dynamic_factor: Vec<f64>,
+}
+
+/// A resonance speed of a train with regular coach length.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct Resonance {
+    /// Train.
+    pub train: String,
+    /// Order i of v_i = n₀ D / i.
+    pub order: usize,
+    /// Speed \[m/s\].
+    pub speed: f64,
+}
+
+/// The deck-acceleration check.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct Checks {
+    /// `ballasted` or `ballastless`.
+    pub track: String,
+    /// The limit \[m/s²\] (EN 1990 A2.4.4.2.1).
+    pub acceleration_limit: f64,
+    /// The peak deck acceleration over every train and speed \[m/s²\].
+    pub max_acceleration: f64,
+    /// Its train and speed \[m/s\].
+    pub governing_train: String,
+    /// Its speed \[m/s\].
+    pub governing_speed: f64,
+    /// max_acceleration ≤ acceleration_limit.
+    pub passed: bool,
+    /// The first bending frequency n₀ \[Hz\].
+    pub first_frequency: f64,
+    /// Resonance speeds v_i = n₀ D / i in the speed range, for the trains with a regular coach
+    /// length D (the HSLM-A trains).
+    pub resonance_speeds: Vec<Resonance>,
+}
+
+/// Everything a sweep reports except its wall time.
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct SweepSummary {
+    /// Per train.
+    pub trains: Vec<TrainSummary>,
+    /// Per speed.
+    pub envelope: Envelope,
+    /// The check.
+    pub checks: Checks,
+    /// Passages run.
+    pub runs: usize,
+}
+
+/// Summarises the passages of a whole sweep (every (train, speed) once, any order).
+pub fn summarise(
+    spec: &SweepSpec,
+    passages: &[Passage],
+    track: Track,
+    first_frequency: f64,
+    axle_counts: &[usize],
+) -> SweepSummary {
+    let ns = spec.speeds.len();
+    let mut sorted: Vec<&Passage> = passages.iter().collect();
+    sorted.sort_by_key(|p| (p.train, p.speed));
+    let peak = |v: &[f64]| v.iter().copied().fold(0.0, f64::max);
+    let phi = |p: &Passage| {
+        let s = peak(&p.peaks.static_deflection);
+        if s > 0.0 {
+            peak(&p.peaks.deflection) / s
+        } else {
+            0.0
+        }
+    };
+    let mut envelope = Envelope {
+        speeds: spec.speeds.clone(),
+        max_acceleration: vec![0.0; ns],
+        max_deflection: vec![0.0; ns],
+        dynamic_factor: vec![0.0; ns],
+    };
+    let mut trains = Vec::with_capacity(spec.trains.len());
+    for (t, train) in spec.trains.iter().enumerate() {
+        let mut s = TrainSummary {
+            name: train.name.clone(),
+            axles: axle_counts.get(t).copied().unwrap_or(0),
+            max_acceleration: 0.0,
+            speed_at_max_acceleration: f64::NAN,
+            max_deflection: 0.0,
+            speed_at_max_deflection: f64::NAN,
+            dynamic_factor: 0.0,
+            speed_at_dynamic_factor: f64::NAN,
+        };
+        for p in sorted.iter().filter(|p| p.train == t) {
+            let v = spec.speeds[p.speed];
+            let (a, w, f) = (
+                peak(&p.peaks.acceleration),
+                peak(&p.peaks.deflection),
+                phi(p),
+            );
+            if a > s.max_acceleration || s.speed_at_max_acceleration.is_nan() {
+                (s.max_acceleration, s.speed_at_max_acceleration) = (a, v);
+            }
+            if w > s.max_deflection || s.speed_at_max_deflection.is_nan() {
+                (s.max_deflection, s.speed_at_max_deflection) = (w, v);
+            }
+            if f > s.dynamic_factor || s.speed_at_dynamic_factor.is_nan() {
+                (s.dynamic_factor, s.speed_at_dynamic_factor) = (f, v);
+            }
+            let e = p.speed;
+            envelope.max_acceleration[e] = envelope.max_acceleration[e].max(a);
+            envelope.max_deflection[e] = envelope.max_deflection[e].max(w);
+            envelope.dynamic_factor[e] = envelope.dynamic_factor[e].max(f);
+        }
+        trains.push(s);
+    }
+    let governing = trains.iter().fold(None::<&TrainSummary>, |g, t| match g {
+        Some(g) if g.max_acceleration >= t.max_acceleration => Some(g),
+        _ => Some(t),
+    });
+    let (v_min, v_max) = (
+        spec.speeds.first().copied().unwrap_or(0.0),
+        spec.speeds.last().copied().unwrap_or(0.0),
+    );
+    let resonance = spec
+        .trains
+        .iter()
+        .filter_map(|t| {
+            let number = t.name.strip_prefix("HSLM-A")?.parse::<usize>().ok()?;
+            let d = hslm::parameters(number)?.coach_length;
+            Some(
+                resonance_speeds(first_frequency, d, v_min, v_max)
+                    .into_iter()
+                    .map(|(order, speed)| Resonance {
+                        train: t.name.clone(),
+                        order,
+                        speed,
+                    })
+                    .collect::<Vec<_>>(),
+            )
+        })
+        .flatten()
+        .collect();
+    let max_acceleration = governing.map_or(0.0, |g| g.max_acceleration);
+    SweepSummary {
+        checks: Checks {
+            track: track.name().to_string(),
+            acceleration_limit: track.acceleration_limit(),
+            max_acceleration,
+            governing_train: governing.map_or(String::new(), |g| g.name.clone()),
+            governing_speed: governing.map_or(0.0, |g| g.speed_at_max_acceleration),
+            passed: max_acceleration <= track.acceleration_limit(),
+            first_frequency,
+            resonance_speeds: resonance,
+        },
+        trains,
+        envelope,
+        runs: passages.len(),
+    }
+}
