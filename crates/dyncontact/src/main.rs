@@ -224,7 +224,9 @@ fn run_cli() -> Result<()> {
             match sim::config::load(&text, base_dir(&file), &Default::default())
                 .map_err(|e| bad_input(e.into()))?
             {
-                ScenarioConfig::Sweep(config) => sweep_cli::run(*config, &text, &out, json, shard),
+                ScenarioConfig::Sweep(config) => {
+                    sweep_cli::run(*config, &text, base_dir(&file), &out, json, shard)
+                }
                 other => Err(bad_input(anyhow::anyhow!(
                     "{} is a {} scenario, not a sweep: use `dyncontact run`",
                     file.display(),
@@ -288,7 +290,7 @@ fn run_scenario(
         ScenarioConfig::MovingLoad(config) => moving_load_cli::run(*config, out, json),
         ScenarioConfig::VehicleBridge(config) => vehicle_bridge_cli::run(*config, out, json),
         ScenarioConfig::Sweep(config) => {
-            sweep_cli::run(*config, &text, out, json, sim::sweep::Shard::ALL)
+            sweep_cli::run(*config, &text, &base, out, json, sim::sweep::Shard::ALL)
         }
     }
 }

@@ -51,6 +51,8 @@ struct SummaryFile<'a> {
 #[derive(Debug, Serialize, Deserialize)]
 struct ShardFile {
     scenario: String,
+    /// The directory relative paths in the scenario (train files) are resolved against.
+    base: PathBuf,
     shard: [usize; 2],
     passages: Vec<ShardPassage>,
     wall_time_s: f64,
@@ -86,6 +88,7 @@ pub fn parse_shard(text: &str) -> Result<Shard> {
 pub fn run(
     config: SweepConfig,
     scenario: &str,
+    base: &Path,
     out: &Path,
     json: bool,
     shard: Shard,
@@ -102,6 +105,7 @@ pub fn run(
     if shard != Shard::ALL {
         let file = ShardFile {
             scenario: scenario.to_string(),
+            base: base.canonicalize().unwrap_or_else(|_| base.to_path_buf()),
             shard: [shard.index, shard.count],
             passages: passages.iter().map(encode).collect(),
             wall_time_s: wall,
@@ -164,7 +168,8 @@ pub fn merge(dirs: &[PathBuf], out: &Path, json: bool) -> Result<()> {
             k + 1
         )));
     }
-    let config = match sim::config::load(&scenario, Path::new("."), &Default::default())
+    let base = shards[0].1.base.clone();
+    let config = match sim::config::load(&scenario, &base, &Default::default())
         .map_err(|e| bad_input(e.into()))?
     {
         sim::config::ScenarioConfig::Sweep(c) => *c,

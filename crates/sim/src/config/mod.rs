@@ -56,6 +56,7 @@ pub mod cost;
 pub mod integrator;
 pub mod moving_load;
 pub mod sweep;
+pub mod train;
 pub mod vehicle_bridge;
 
 /// Scenario kinds of [`load`].
@@ -163,7 +164,7 @@ fn build(
         }
         "sweep" => {
             let file = deserialize(table, text)?;
-            sweep::build(file).map(|c| ScenarioConfig::Sweep(Box::new(c)))
+            sweep::build(file, base).map(|c| ScenarioConfig::Sweep(Box::new(c)))
         }
         other => bail!(
             "unknown `kind` = \"{other}\" (known kinds: {})",

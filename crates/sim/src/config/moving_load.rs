@@ -27,8 +27,10 @@ pub struct MovingLoadFile {
     pub kind: String,
     /// The bridge.
     pub bridge: BridgeSpec,
-    /// The moving load(s).
-    pub load: LoadSpec,
+    /// The moving load(s) ...
+    pub load: Option<LoadSpec>,
+    /// ... or a train (`[train]` with `speed`; each vehicle's static axle loads).
+    pub train: Option<super::train::TrainTable>,
     /// Time integration.
     pub integrator: Option<IntegratorSpec>,
     /// Outputs.
@@ -150,13 +152,40 @@ fn loads(spec: &LoadSpec) -> Result<MovingLoads, ConfigError> {
     Ok(loads)
 }
 
+/// The axle loads of a `[train]` (each vehicle's statics), at `train.speed`.
+fn train_loads(table: &super::train::TrainTable) -> Result<MovingLoads, ConfigError> {
+    let train = super::train::build(table, "train")?;
+    let speed = table
+        .speed
+        .ok_or_else(|| invalid!("[train]: missing `speed` [m/s]"))?;
+    ranges::SPEED.check("train.speed", speed)?;
+    if table.position.is_some() {
+        bail!("[train] `position` does not apply to moving_load (the first axle enters at t = 0)");
+    }
+    let axles = train
+        .axles(crate::vehicle_bridge::GRAVITY)
+        .map_err(|e| invalid!("[train] {e}"))?
+        .into_iter()
+        .map(|a| Axle {
+            offset: a.offset,
+            force: a.load,
+        })
+        .collect();
+    MovingLoads::train(axles, speed).map_err(|e| invalid!("[train] {e}"))
+}
+
 /// Validate a parsed file.
 pub fn build(file: MovingLoadFile) -> Result<MovingLoadConfig, ConfigError> {
     if file.kind != "moving_load" {
         bail!("`kind` = \"{}\" is not a moving-load scenario", file.kind);
     }
     let bridge = file.bridge.build()?;
-    let loads = loads(&file.load)?;
+    let loads = match (&file.load, &file.train) {
+        (Some(load), None) => loads(load)?,
+        (None, Some(train)) => train_loads(train)?,
+        (Some(_), Some(_)) => bail!("give either [load] or [train], not both"),
+        (None, None) => bail!("missing [load] (a force or axles) or [train]"),
+    };
     let (modal_integrator, integrator_name, dt) = integrator(file.integrator.as_ref())?;
     let length = bridge.basis.length();
     let omega1 = bridge

@@ -69,6 +69,10 @@ pub struct TrainsSpec {
     /// Preset names: `HSLM-A` (all ten), `HSLM-A1` … `HSLM-A10`.
     #[serde(default)]
     pub names: Vec<String>,
+    /// Train files (any TOML file with a `[train]` table, paths relative to the sweep file):
+    /// each vehicle's static axle loads.
+    #[serde(default)]
+    pub files: Vec<String>,
     /// `moving_forces` (default).
     pub model: Option<String>,
     /// Trains given by their axles.
@@ -145,7 +149,7 @@ pub struct SweepConfig {
 }
 
 /// Validates a parsed file.
-pub fn build(file: SweepFile) -> Result<SweepConfig, ConfigError> {
+pub fn build(file: SweepFile, base: &std::path::Path) -> Result<SweepConfig, ConfigError> {
     if file.kind != "sweep" {
         bail!("`kind` = \"{}\": expected \"sweep\"", file.kind);
     }
@@ -158,7 +162,7 @@ pub fn build(file: SweepFile) -> Result<SweepConfig, ConfigError> {
         other => bail!("[trains] `model` = \"{other}\": expected moving_forces"),
     }
     let speeds = speeds(&file.speeds)?;
-    let trains = trains(&file.trains)?;
+    let trains = trains(&file.trains, base)?;
     checks::count(
         "the passages (trains × speeds)",
         trains.len() * speeds.len(),
@@ -267,8 +271,30 @@ fn speeds(s: &SpeedsSpec) -> Result<Vec<f64>, ConfigError> {
 }
 
 /// The trains of `[trains]`.
-fn trains(spec: &TrainsSpec) -> Result<Vec<Train>, ConfigError> {
+fn trains(spec: &TrainsSpec, base: &std::path::Path) -> Result<Vec<Train>, ConfigError> {
     let mut trains = Vec::new();
+    checks::count("trains.files", spec.files.len(), 0, 1000)?;
+    for (k, name) in spec.files.iter().enumerate() {
+        let path = base.join(name);
+        let text = std::fs::read_to_string(&path).map_err(|source| ConfigError::Io {
+            context: format!("trains.files[{k}] = \"{name}\" ({})", path.display()),
+            source,
+        })?;
+        let mut table: toml::Table = text
+            .parse()
+            .map_err(|e| ConfigError::Schema(format!("trains.files[{k}] = \"{name}\": {e}")))?;
+        let train = table
+            .remove("train")
+            .ok_or_else(|| invalid!("trains.files[{k}] = \"{name}\": no [train] table"))?;
+        let table = super::train::TrainTable::deserialize(train).map_err(|e| {
+            ConfigError::Schema(format!("trains.files[{k}] = \"{name}\" [train]: {e}"))
+        })?;
+        let mut train = super::train::build(&table, &format!("trains.files[{k}]: train"))?;
+        if table.name.is_none() {
+            train.name = name.clone();
+        }
+        trains.push(train);
+    }
     for name in &spec.names {
         if name.trim().eq_ignore_ascii_case("HSLM-A") {
             trains.extend(hslm::all());
@@ -314,7 +340,9 @@ fn trains(spec: &TrainsSpec) -> Result<Vec<Train>, ConfigError> {
         trains.push(train);
     }
     if trains.is_empty() {
-        bail!("[trains]: no train given: set `names` (e.g. [\"HSLM-A\"]) or [[trains.train]]");
+        bail!(
+            "[trains]: no train given: set `names` (e.g. [\"HSLM-A\"]), `files` or [[trains.train]]"
+        );
     }
     Ok(trains)
 }

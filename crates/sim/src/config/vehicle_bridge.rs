@@ -81,7 +81,9 @@ pub struct VehicleBridgeConfig {
 pub struct VehicleBridgeFile {
     pub kind: String,
     pub bridge: BridgeSpec,
-    pub vehicle: VehicleSpec,
+    pub vehicle: Option<VehicleSpec>,
+    /// A train instead of `[vehicle]` (quarter cars and sprung masses; docs/trains.md).
+    pub train: Option<super::train::TrainTable>,
     pub contact: Option<ContactSpec>,
     pub irregularity: Option<IrregularitySpec>,
     pub integrator: Option<IntegratorSpec>,
@@ -261,25 +263,18 @@ pub fn parse(text: &str) -> Result<VehicleBridgeConfig, ConfigError> {
     build(super::from_str(text)?)
 }
 
-/// Validates a parsed scenario file.
-pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError> {
-    // Sizes first, before the bridge's modes are computed.
+/// The wheels of `[vehicle]`.
+fn vehicle_wheels(vehicle: &VehicleSpec) -> Result<Vec<WheelSpec>, ConfigError> {
     checks::count(
         "vehicle.wheels",
-        file.vehicle.wheels.len(),
+        vehicle.wheels.len(),
         0,
         checks::MAX_WHEELS,
     )?;
-    if file.kind != "vehicle_bridge" {
-        bail!("`kind` = \"{}\": expected \"vehicle_bridge\"", file.kind);
-    }
-    let bridge = file.bridge.build()?;
-    let length = bridge.basis.length();
-    if file.vehicle.wheels.is_empty() {
+    if vehicle.wheels.is_empty() {
         bail!("[vehicle]: at least one [[vehicle.wheels]] table is needed");
     }
-    let wheels: Vec<WheelSpec> = file
-        .vehicle
+    Ok(vehicle
         .wheels
         .iter()
         .map(|w| WheelSpec {
@@ -290,7 +285,79 @@ pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError
             suspension_damping: w.suspension_damping.unwrap_or(0.0),
             static_load: w.static_load.unwrap_or(0.0),
         })
-        .collect();
+        .collect())
+}
+
+/// The wheels and speed of a `[train]` of quarter cars and sprung masses: vehicle i's axle at
+/// `position` − (its offset behind the leading axle). The multibody vehicles (bogie vehicles,
+/// articulated trains) and moving forces need dynamics the coupled model does not have yet.
+fn train_wheels(table: &super::train::TrainTable) -> Result<(Vec<WheelSpec>, f64), ConfigError> {
+    use crate::train::VehicleSpec as V;
+    let train = super::train::build(table, "train")?;
+    let speed = table
+        .speed
+        .ok_or_else(|| invalid!("[train]: missing `speed` [m/s]"))?;
+    ranges::SPEED.check("train.speed", speed)?;
+    let position = table.position.unwrap_or(0.0);
+    ranges::POSITION.check("train.position", position)?;
+    checks::count(
+        "the wheels of [train]",
+        train.vehicles.len(),
+        1,
+        checks::MAX_WHEELS,
+    )?;
+    let mut offset = 0.0;
+    let mut wheels = Vec::with_capacity(train.vehicles.len());
+    for (i, v) in train.vehicles.iter().enumerate() {
+        let (wheel_mass, body_mass, stiffness, damping, length) = match v {
+            V::QuarterCar(q) => (
+                q.wheel_mass,
+                q.body_mass,
+                q.suspension_stiffness,
+                q.suspension_damping,
+                q.length,
+            ),
+            V::SprungMass(m) => (
+                0.0,
+                m.body_mass,
+                m.suspension_stiffness,
+                m.suspension_damping,
+                m.length,
+            ),
+            other => bail!(
+                "train vehicle {i}: type = \"{}\" is not yet available in vehicle_bridge (the coupled model has quarter_car and sprung_mass vehicles; use kind = \"moving_load\" or \"sweep\" for this train as moving forces)",
+                other.type_name()
+            ),
+        };
+        wheels.push(WheelSpec {
+            position: position - offset,
+            wheel_mass,
+            body_mass,
+            suspension_stiffness: stiffness,
+            suspension_damping: damping,
+            static_load: 0.0,
+        });
+        offset += length;
+    }
+    Ok((wheels, speed))
+}
+
+/// Validates a parsed scenario file.
+pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError> {
+    // Sizes first, before the bridge's modes are computed.
+    let (wheels, speed) = match (&file.vehicle, &file.train) {
+        (Some(vehicle), None) => (vehicle_wheels(vehicle)?, vehicle.speed),
+        (None, Some(train)) => train_wheels(train)?,
+        (Some(_), Some(_)) => {
+            bail!("[train] replaces [vehicle] and [[vehicle.wheels]]: give one of them")
+        }
+        (None, None) => bail!("missing [vehicle] with [[vehicle.wheels]] (or [train])"),
+    };
+    if file.kind != "vehicle_bridge" {
+        bail!("`kind` = \"{}\": expected \"vehicle_bridge\"", file.kind);
+    }
+    let bridge = file.bridge.build()?;
+    let length = bridge.basis.length();
 
     let c = file.contact.as_ref();
     let geometry = ContactGeometry {
@@ -394,7 +461,7 @@ pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError
         bridge: bridge.basis,
         damping: bridge.damping,
         wheels,
-        speed: file.vehicle.speed,
+        speed,
         contact,
         geometry,
         irregularity,

@@ -46,7 +46,9 @@ impl BridgeType {
 
 /// The additional damping Δζ of vehicle–bridge interaction for spans L < 30 m (EN 1991-2
 /// eq. 6.13): Δζ = (0.0187 L − 0.00064 L²) / (1 − 0.0441 L − 0.0044 L² + 0.000255 L³) %;
-/// 0 from 30 m.
+/// 0 from 30 m. The numerator changes sign at L = 0.0187/0.00064 = 29.2 m, so the formula's
+/// slightly negative values for 29.2 ≤ L < 30 m are taken as 0 (an additional damping never
+/// reduces the damping).
 pub fn additional_damping(span: f64) -> f64 {
     if span >= 30.0 || span <= 0.0 {
         return 0.0;
@@ -54,7 +56,7 @@ pub fn additional_damping(span: f64) -> f64 {
     let l = span;
     let percent =
         (0.0187 * l - 0.00064 * l * l) / (1.0 - 0.0441 * l - 0.0044 * l * l + 0.000255 * l * l * l);
-    percent / 100.0
+    (percent / 100.0).max(0.0)
 }
 
 /// The damping ratio of a dynamic check: the lower limit plus Δζ.
@@ -147,7 +149,8 @@ mod tests {
         // eq. 6.13 at L = 10 m: (0.187 − 0.064)/(1 − 0.441 − 0.44 + 0.255) = 0.123/0.374 %.
         assert!((additional_damping(10.0) - 0.123 / 0.374 / 100.0).abs() < 1e-15);
         assert_eq!(additional_damping(30.0), 0.0);
-        assert!(additional_damping(29.9) > 0.0);
+        assert!(additional_damping(29.0) > 0.0);
+        assert_eq!(additional_damping(29.9), 0.0);
         assert_eq!(
             BridgeType::by_name("filler_beam"),
             Some(BridgeType::ReinforcedConcrete)
