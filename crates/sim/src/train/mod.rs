@@ -6,8 +6,10 @@
 //! `config`, the dynamics are in `vehicle_bridge`, the moving-force passages in `beam`.
 //! SI units.
 //!
-//! * [`hslm`]: HSLM-A1 … A10 of EN 1991-2 Annex E.
+//! * [`hslm`]: HSLM-A1 … A10 of EN 1991-2 Annex E;
+//! * [`bogie_vehicle`]: the bogie vehicle's matrices and rigid-track natural frequencies.
 
+pub mod bogie_vehicle;
 pub mod hslm;
 pub mod vehicle;
 
