@@ -165,10 +165,10 @@ impl PassagePlan {
                 reason: "at least one axle",
             });
         }
-        if !axles.is_sorted_by(|a, b| a.offset <= b.offset) {
+        if let Some(w) = axles.windows(2).find(|w| w[1].offset < w[0].offset) {
             return Err(BeamError::InvalidParameter {
                 name: "offset",
-                value: f64::NAN,
+                value: w[1].offset,
                 reason: "axle offsets must be non-decreasing (first axle first)",
             });
         }

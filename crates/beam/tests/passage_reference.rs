@@ -269,3 +269,33 @@ fn a_general_basis_gives_the_same_peaks_as_the_sine_path() {
         assert!((p.acceleration[point] / a - 1.0).abs() < 1e-9);
     }
 }
+
+#[test]
+fn bad_passages_are_errors_naming_the_parameter() {
+    let b = basis();
+    let plan = PassagePlan::new(&b, &ModalDamping::Uniform(ZETA), 1e-3, &[10.0]).unwrap();
+    let mut work = plan.work();
+    let unsorted = [
+        Axle {
+            offset: 3.0,
+            force: 1e5,
+        },
+        Axle {
+            offset: 1.0,
+            force: 1e5,
+        },
+    ];
+    let e = plan
+        .peaks(&b, &unsorted, 50.0, 0.1, &mut work)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("offset") && e.contains("non-decreasing"), "{e}");
+    assert!(plan.peaks(&b, &[], 50.0, 0.1, &mut work).is_err());
+    let one = [Axle {
+        offset: 0.0,
+        force: 1e5,
+    }];
+    assert!(plan.peaks(&b, &one, 0.0, 0.1, &mut work).is_err());
+    assert!(plan.peaks(&b, &one, 50.0, -1.0, &mut work).is_err());
+    assert!(PassagePlan::new(&b, &ModalDamping::Uniform(ZETA), 1e-3, &[25.0]).is_err());
+}

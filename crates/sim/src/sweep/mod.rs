@@ -104,8 +104,8 @@ pub fn train_axles(spec: &SweepSpec) -> Result<Vec<Vec<BeamAxle>>, SweepError> {
         .collect()
 }
 
-/// Runs the passages of `shard`, in parallel; `tick` is called after each passage and returns
-/// false to stop the sweep (an interrupt). Results in train-major order.
+/// Runs the passages of `shard`, in parallel; `tick` is called as each passage starts and
+/// returns false to stop the sweep (an interrupt: the passages not started are skipped). Results in train-major order.
 pub fn run(
     basis: &(dyn ModalBasis + Sync),
     damping: &ModalDamping,
