@@ -37,7 +37,10 @@ const DEFAULT_SCENARIO_PATH: &str = "examples/vehicle_bridge_default.toml";
 #[command(
     name = "dyncontact",
     version,
-    about = "Contact in dynamical simulations: elastic half-space contact, time integrators, bridge dynamics"
+    about = "Contact in dynamical simulations: elastic half-space contact, time integrators, bridge dynamics",
+    after_help = "Scenario kinds of `run`: ball_drop, contact, moving_load, sweep, vehicle_bridge.\n\
+Examples of each in examples/ (copy one to start your own); every key is documented in docs/*.md\n\
+(README.md lists the pages). SI units everywhere. Exit codes: 0 ok, 1 run failed or interrupted, 2 bad input."
 )]
 struct Cli {
     #[command(subcommand)]
@@ -66,7 +69,8 @@ enum Command {
         #[arg(long)]
         max_work: Option<f64>,
     },
-    /// Solve a quasi-static normal contact case (TOML).
+    /// Solve a quasi-static contact case (TOML): normal, and tangential (shift, rolling) when
+    /// the case has [friction] and [kinematics].
     Contact {
         /// Case file (TOML).
         file: PathBuf,

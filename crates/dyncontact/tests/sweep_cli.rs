@@ -136,3 +136,18 @@ fn bad_sweep_input_names_the_key() {
     assert_eq!(code(&o), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("--shard 4/3"));
 }
+
+#[test]
+fn help_lists_every_scenario_kind_and_the_sweep_commands() {
+    let o = dyncontact(&["--help"]);
+    let help = String::from_utf8_lossy(&o.stdout);
+    for kind in sim::config::SCENARIO_KINDS {
+        assert!(
+            help.contains(kind),
+            "--help does not list kind {kind}: {help}"
+        );
+    }
+    for command in ["sweep", "sweep-merge", "examples/"] {
+        assert!(help.contains(command), "{command}: {help}");
+    }
+}
