@@ -106,7 +106,7 @@ const MAX_STEPS: f64 = 1e9;
 /// Runs a scenario, recording every `every`-th step and `snapshots` pressure snapshots of the
 /// first wheel along its passage over the span (no CSV: as `bench` uses it).
 pub fn simulate(scenario: Scenario, every: usize, snapshots: usize) -> Result<Outcome> {
-    simulate_full(scenario, None, every, snapshots, None)
+    simulate_full(scenario, Vec::new(), None, every, snapshots, None)
 }
 
 /// [`simulate`] with longitudinal friction (`traction`) and the recorded rows streamed to
@@ -114,6 +114,7 @@ pub fn simulate(scenario: Scenario, every: usize, snapshots: usize) -> Result<Ou
 /// early, with `completed = false`, on an interrupt (Ctrl-C) or a failed step.
 pub fn simulate_full(
     scenario: Scenario,
+    vehicles: Vec<sim::vehicle_bridge::BogieLayout>,
     traction: Option<TractionSpec>,
     every: usize,
     snapshots: usize,
@@ -127,7 +128,7 @@ pub fn simulate_full(
     };
     let integrator = scenario.integrator.name().to_string();
     let start = Instant::now();
-    let mut sim = Simulation::new(scenario).map_err(|e| bad_input(e.into()))?;
+    let mut sim = Simulation::with_vehicles(scenario, vehicles).map_err(|e| bad_input(e.into()))?;
     if let Some(spec) = traction {
         sim.set_traction(spec).map_err(|e| bad_input(e.into()))?;
     }
@@ -312,6 +313,7 @@ pub fn print_summary(s: &Summary) {
 pub fn run(config: VehicleBridgeConfig, out: &Path, json: bool) -> Result<()> {
     let VehicleBridgeConfig {
         scenario,
+        vehicles,
         traction,
         every,
         snapshots,
@@ -323,6 +325,7 @@ pub fn run(config: VehicleBridgeConfig, out: &Path, json: bool) -> Result<()> {
     let run_out = RunOutput::create(out, OUTPUT_SET)?;
     let outcome = simulate_full(
         scenario,
+        vehicles,
         traction,
         every,
         snapshots,

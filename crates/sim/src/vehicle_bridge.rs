@@ -81,6 +81,7 @@ pub mod run;
 mod scenario;
 mod step;
 pub mod traction;
+pub mod vehicles;
 
 use halfspace::law::{self, LawOutput};
 use integrate::structural::{StepEquation, StructuralStepper};
@@ -97,6 +98,7 @@ pub use run::{
     WheelSummary,
 };
 pub use scenario::{ContactModel, CouplingSolver, CouplingSpec, Integrator, Scenario, WheelSpec};
+pub use vehicles::BogieLayout;
 
 /// Standard gravity \[m/s²\].
 pub const GRAVITY: f64 = 9.81;
@@ -116,6 +118,10 @@ pub struct Simulation {
     /// Index of each wheel's DOF and of its body's DOF (if any).
     wheel_dof: Vec<usize>,
     body_dof: Vec<Option<usize>>,
+    /// Multibody vehicles on the wheels (module [`vehicles`]).
+    vehicles: Vec<vehicles::VehicleDofs>,
+    /// Per wheel: the multibody vehicle it belongs to.
+    wheel_vehicle: Vec<Option<usize>>,
     /// Static wheel loads W_k \[N\] and the force scale of the tolerance.
     static_loads: Vec<f64>,
     force_scale: f64,

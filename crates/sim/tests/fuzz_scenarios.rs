@@ -404,8 +404,8 @@ fn simulate(read: Read, deadline: Instant) -> RunResult {
             }
             ScenarioConfig::VehicleBridge(v) => {
                 let v = *v;
-                let mut s =
-                    sim::vehicle_bridge::Simulation::new(v.scenario).map_err(|e| e.to_string())?;
+                let mut s = sim::vehicle_bridge::Simulation::with_vehicles(v.scenario, v.vehicles)
+                    .map_err(|e| e.to_string())?;
                 if let Some(t) = v.traction {
                     s.set_traction(t).map_err(|e| e.to_string())?;
                 }

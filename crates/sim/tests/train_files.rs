@@ -66,7 +66,8 @@ fn a_quarter_car_train_drives_the_coupled_model() {
     let summary = |text: String| match load(&text, Path::new(".")).unwrap_or_else(|e| panic!("{e}"))
     {
         ScenarioConfig::VehicleBridge(v) => {
-            let mut sim = sim::vehicle_bridge::Simulation::new(v.scenario).unwrap();
+            let mut sim =
+                sim::vehicle_bridge::Simulation::with_vehicles(v.scenario, v.vehicles).unwrap();
             sim.run(|_| {}).unwrap()
         }
         _ => panic!("not vehicle_bridge"),
@@ -79,15 +80,16 @@ fn a_quarter_car_train_drives_the_coupled_model() {
 
 #[test]
 fn trains_the_coupled_model_cannot_run_yet_are_refused_with_the_remedy() {
+    let articulated = "[train]\nspeed = 50.0\n[[train.vehicles]]\ntype = \"articulated\"\nbodies = 2\nlength = 45.0\nbody_mass = 28000.0\nbody_pitch_inertia = 1.5e6\nbogie_spacing = 18.7\nbogie_mass = 3000.0\nbogie_pitch_inertia = 2000.0\nwheelbase = 3.0\nwheelset_mass = 2000.0\nprimary_stiffness = 2.4e6\nsecondary_stiffness = 8e5\n";
     let e = load(
-        &format!("kind = \"vehicle_bridge\"\n{BRIDGE}{MANCHESTER}"),
+        &format!("kind = \"vehicle_bridge\"\n{BRIDGE}{articulated}"),
         Path::new("."),
     )
     .err()
     .unwrap()
     .to_string();
     assert!(
-        e.contains("bogie_vehicle") && e.contains("moving_load"),
+        e.contains("articulated") && e.contains("moving_load"),
         "{e}"
     );
 }

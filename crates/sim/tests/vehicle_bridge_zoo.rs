@@ -381,7 +381,8 @@ fn run_text(text: &str) -> Result<Outcome, String> {
         return Err("not a vehicle_bridge scenario".into());
     };
     let v = *v;
-    let mut sim = Simulation::new(v.scenario).map_err(|e| format!("Simulation::new: {e}"))?;
+    let mut sim = Simulation::with_vehicles(v.scenario, v.vehicles)
+        .map_err(|e| format!("Simulation::new: {e}"))?;
     let static_load = sim.static_loads().iter().fold(0.0f64, |m, &w| m.max(w));
     let window = (FORCE_WINDOW / sim.scenario().dt).round().max(1.0) as usize;
     let wheels = sim.wheels().len();

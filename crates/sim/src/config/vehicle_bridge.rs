@@ -65,6 +65,8 @@ pub const MAX_IRREGULARITY_WORK: f64 = 2e9;
 pub struct VehicleBridgeConfig {
     /// The scenario of [`crate::vehicle_bridge::Simulation::new`].
     pub scenario: Scenario,
+    /// Bogie vehicles on the scenario's wheels ([`crate::vehicle_bridge::Simulation::with_vehicles`]).
+    pub vehicles: Vec<crate::vehicle_bridge::BogieLayout>,
     /// Longitudinal friction (`[traction]`), if given.
     pub traction: Option<TractionSpec>,
     /// Record every n-th step (`output.every`).
@@ -288,10 +290,15 @@ fn vehicle_wheels(vehicle: &VehicleSpec) -> Result<Vec<WheelSpec>, ConfigError> 
         .collect())
 }
 
-/// The wheels and speed of a `[train]` of quarter cars and sprung masses: vehicle i's axle at
-/// `position` − (its offset behind the leading axle). The multibody vehicles (bogie vehicles,
-/// articulated trains) and moving forces need dynamics the coupled model does not have yet.
-fn train_wheels(table: &super::train::TrainTable) -> Result<(Vec<WheelSpec>, f64), ConfigError> {
+/// The wheels, speed and bogie vehicles of a `[train]`: vehicle i's leading axle at
+/// `position` − (its offset behind the train's leading axle); a quarter car or sprung mass is
+/// one wheel with its body, a bogie vehicle four bare wheelsets carrying its body and bogies
+/// (their `static_load` the suspended share, for the contact's static state and the checks).
+/// Articulated trains and moving forces need dynamics the coupled model does not have yet.
+#[allow(clippy::type_complexity)]
+fn train_wheels(
+    table: &super::train::TrainTable,
+) -> Result<(Vec<WheelSpec>, f64, Vec<crate::vehicle_bridge::BogieLayout>), ConfigError> {
     use crate::train::VehicleSpec as V;
     let train = super::train::build(table, "train")?;
     let speed = table
@@ -300,53 +307,86 @@ fn train_wheels(table: &super::train::TrainTable) -> Result<(Vec<WheelSpec>, f64
     ranges::SPEED.check("train.speed", speed)?;
     let position = table.position.unwrap_or(0.0);
     ranges::POSITION.check("train.position", position)?;
-    checks::count(
-        "the wheels of [train]",
-        train.vehicles.len(),
-        1,
-        checks::MAX_WHEELS,
-    )?;
+    let g = GRAVITY;
     let mut offset = 0.0;
-    let mut wheels = Vec::with_capacity(train.vehicles.len());
+    let mut wheels = Vec::new();
+    let mut layouts = Vec::new();
     for (i, v) in train.vehicles.iter().enumerate() {
-        let (wheel_mass, body_mass, stiffness, damping, length) = match v {
-            V::QuarterCar(q) => (
-                q.wheel_mass,
-                q.body_mass,
-                q.suspension_stiffness,
-                q.suspension_damping,
-                q.length,
-            ),
-            V::SprungMass(m) => (
-                0.0,
-                m.body_mass,
-                m.suspension_stiffness,
-                m.suspension_damping,
-                m.length,
-            ),
-            other => bail!(
-                "train vehicle {i}: type = \"{}\" is not yet available in vehicle_bridge (the coupled model has quarter_car and sprung_mass vehicles; use kind = \"moving_load\" or \"sweep\" for this train as moving forces)",
-                other.type_name()
-            ),
-        };
-        wheels.push(WheelSpec {
+        let single = |wheel_mass: f64, body_mass: f64, k: f64, c: f64| WheelSpec {
             position: position - offset,
             wheel_mass,
             body_mass,
-            suspension_stiffness: stiffness,
-            suspension_damping: damping,
+            suspension_stiffness: k,
+            suspension_damping: c,
             static_load: 0.0,
-        });
+        };
+        let length = match v {
+            V::QuarterCar(q) => {
+                wheels.push(single(
+                    q.wheel_mass,
+                    q.body_mass,
+                    q.suspension_stiffness,
+                    q.suspension_damping,
+                ));
+                q.length
+            }
+            V::SprungMass(m) => {
+                wheels.push(single(
+                    0.0,
+                    m.body_mass,
+                    m.suspension_stiffness,
+                    m.suspension_damping,
+                ));
+                m.length
+            }
+            V::BogieVehicle(b) => {
+                layouts.push(crate::vehicle_bridge::BogieLayout {
+                    vehicle: *b,
+                    first_wheel: wheels.len(),
+                });
+                let suspended = (0.25 * b.body_mass + 0.5 * b.bogie_mass) * g;
+                for x in [
+                    0.0,
+                    b.wheelbase,
+                    b.bogie_spacing,
+                    b.bogie_spacing + b.wheelbase,
+                ] {
+                    wheels.push(WheelSpec {
+                        position: position - offset - x,
+                        wheel_mass: b.wheelset_mass,
+                        static_load: suspended,
+                        ..WheelSpec::default()
+                    });
+                }
+                for (key, value) in [
+                    ("primary_stiffness", b.primary_stiffness),
+                    ("secondary_stiffness", b.secondary_stiffness),
+                    ("wheelset_mass", b.wheelset_mass),
+                ] {
+                    if value <= 0.0 {
+                        bail!(
+                            "train vehicle {i}: `{key}` = {value}: a bogie vehicle in vehicle_bridge needs it positive"
+                        );
+                    }
+                }
+                b.length
+            }
+            other => bail!(
+                "train vehicle {i}: type = \"{}\" is not yet available in vehicle_bridge (the coupled model has quarter_car, sprung_mass and bogie_vehicle vehicles; use kind = \"moving_load\" or \"sweep\" for this train as moving forces)",
+                other.type_name()
+            ),
+        };
         offset += length;
     }
-    Ok((wheels, speed))
+    checks::count("the wheels of [train]", wheels.len(), 1, checks::MAX_WHEELS)?;
+    Ok((wheels, speed, layouts))
 }
 
 /// Validates a parsed scenario file.
 pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError> {
     // Sizes first, before the bridge's modes are computed.
-    let (wheels, speed) = match (&file.vehicle, &file.train) {
-        (Some(vehicle), None) => (vehicle_wheels(vehicle)?, vehicle.speed),
+    let (wheels, speed, vehicles) = match (&file.vehicle, &file.train) {
+        (Some(vehicle), None) => (vehicle_wheels(vehicle)?, vehicle.speed, Vec::new()),
         (None, Some(train)) => train_wheels(train)?,
         (Some(_), Some(_)) => {
             bail!("[train] replaces [vehicle] and [[vehicle.wheels]]: give one of them")
@@ -486,6 +526,7 @@ pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError
     let traction = traction(file.traction.as_ref())?;
     Ok(VehicleBridgeConfig {
         scenario,
+        vehicles,
         traction,
         every,
         snapshots,

@@ -96,8 +96,12 @@ impl Simulation {
             let sample = &mut self.samples[k];
             sample.wheel_displacement = q[iw];
             sample.wheel_acceleration = a[iw];
-            sample.body_displacement = self.body_dof[k].map_or(q[iw], |ib| q[ib]);
-            sample.body_acceleration = self.body_dof[k].map_or(0.0, |ib| a[ib]);
+            // A wheelset of a multibody vehicle reports its car body.
+            let body = self.wheel_vehicle[k]
+                .map(|v| self.vehicles[v].body())
+                .or(self.body_dof[k]);
+            sample.body_displacement = body.map_or(q[iw], |ib| q[ib]);
+            sample.body_acceleration = body.map_or(0.0, |ib| a[ib]);
             sample.approach = self.work.delta[k];
             sample.contact = LawOutput {
                 iterations: counts.contact_iterations,

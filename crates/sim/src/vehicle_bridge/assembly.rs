@@ -57,12 +57,102 @@ impl StructuralSystem for Structure {
     }
 }
 
+/// The static body and bogie displacements of a vehicle with its wheels at their start
+/// positions: K_ff q_f = g_f − K_fw z_w (6 × 6, Gaussian elimination with partial pivoting).
+fn static_vehicle(
+    v: &super::vehicles::VehicleDofs,
+    stiffness: &Mat<f64>,
+    gravity_load: &[f64],
+    q: &mut [f64],
+) -> Result<(), VehicleBridgeError> {
+    const F: usize = crate::train::bogie_vehicle::FIRST_WHEEL;
+    let own = v.own();
+    let mut a = [[0.0f64; F + 1]; F];
+    for (r, &i) in own.iter().enumerate() {
+        for (c, &j) in own.iter().enumerate() {
+            a[r][c] = stiffness[(i, j)];
+        }
+        a[r][F] = gravity_load[i]
+            - v.dofs[F..]
+                .iter()
+                .map(|&w| stiffness[(i, w)] * q[w])
+                .sum::<f64>();
+    }
+    for col in 0..F {
+        let pivot = (col..F)
+            .max_by(|&x, &y| a[x][col].abs().total_cmp(&a[y][col].abs()))
+            .unwrap_or(col);
+        a.swap(col, pivot);
+        let p = a[col][col];
+        if !(p.is_finite() && p.abs() > 0.0) {
+            return Err(super::error::invalid(
+                "train.vehicles",
+                v.first_wheel as f64,
+                "a bogie vehicle's suspension must hold its body and bogies (positive stiffnesses)",
+            ));
+        }
+        for r in 0..F {
+            if r != col {
+                let f = a[r][col] / p;
+                for c in col..=F {
+                    a[r][c] -= f * a[col][c];
+                }
+            }
+        }
+    }
+    for (r, &i) in own.iter().enumerate() {
+        q[i] = a[r][F] / a[r][r];
+    }
+    Ok(())
+}
+
 impl Simulation {
     /// Validates the scenario and sets up the static start (module documentation).
-    pub fn new(mut scenario: Scenario) -> Result<Self, VehicleBridgeError> {
+    pub fn new(scenario: Scenario) -> Result<Self, VehicleBridgeError> {
+        Self::with_vehicles(scenario, Vec::new())
+    }
+
+    /// [`Simulation::new`] with bogie vehicles on some of the wheels (module
+    /// [`vehicles`](super::vehicles)): each layout's four wheels (bare wheelsets: no body,
+    /// their `static_load` the suspended share of the vehicle's weight) get the vehicle's
+    /// body and bogies.
+    pub fn with_vehicles(
+        mut scenario: Scenario,
+        layouts: Vec<super::BogieLayout>,
+    ) -> Result<Self, VehicleBridgeError> {
         let m = scenario.bridge.n_modes();
         let length = scenario.bridge.length();
         scenario::validate(&mut scenario)?;
+        let nw0 = scenario.wheels.len();
+        let mut wheel_vehicle: Vec<Option<usize>> = vec![None; nw0];
+        for (v, layout) in layouts.iter().enumerate() {
+            let k0 = layout.first_wheel;
+            if k0 + 4 > nw0 {
+                return Err(super::error::invalid(
+                    "train.vehicles",
+                    k0 as f64,
+                    "a bogie vehicle needs four wheels of the scenario",
+                ));
+            }
+            for k in k0..k0 + 4 {
+                let w = &scenario.wheels[k];
+                if wheel_vehicle[k].is_some() || w.body_mass != 0.0 || w.wheel_mass <= 0.0 {
+                    return Err(super::error::invalid(
+                        "train.vehicles",
+                        k as f64,
+                        "the wheels of a bogie vehicle are its own bare wheelsets (wheel_mass > 0, no body)",
+                    ));
+                }
+                wheel_vehicle[k] = Some(v);
+            }
+        }
+        if !layouts.is_empty() && matches!(scenario.integrator, Integrator::Radau5(_)) {
+            return Err(super::error::invalid_text(
+                "integrator.method",
+                "radau5",
+                "not yet available with bogie vehicles; use generalized_alpha, hht or newmark",
+            ));
+        }
 
         // DOF layout and matrices.
         let mut n = m;
@@ -77,6 +167,28 @@ impl Simulation {
             } else {
                 body_dof.push(None);
             }
+        }
+        // Body and bogies of each multibody vehicle (module `vehicles`).
+        let mut vehicles = Vec::with_capacity(layouts.len());
+        for layout in &layouts {
+            let mut dofs = [0usize; crate::train::bogie_vehicle::DOFS];
+            for (i, d) in dofs
+                .iter_mut()
+                .enumerate()
+                .take(crate::train::bogie_vehicle::FIRST_WHEEL)
+            {
+                *d = n + i;
+            }
+            n += crate::train::bogie_vehicle::FIRST_WHEEL;
+            for j in 0..4 {
+                dofs[crate::train::bogie_vehicle::FIRST_WHEEL + j] =
+                    wheel_dof[layout.first_wheel + j];
+            }
+            vehicles.push(super::vehicles::VehicleDofs {
+                first_wheel: layout.first_wheel,
+                dofs,
+                matrices: layout.vehicle.matrices(),
+            });
         }
         let omegas = scenario.bridge.circular_frequencies().to_vec();
         let modal_c = scenario.damping.velocity_coefficients(&omegas)?;
@@ -95,7 +207,14 @@ impl Simulation {
         for (k, w) in scenario.wheels.iter().enumerate() {
             let iw = wheel_dof[k];
             mass[(iw, iw)] = w.wheel_mass;
-            gravity_load[iw] = w.wheel_mass * g + w.static_load;
+            // A vehicle's wheelset carries its share of the body and bogies through the
+            // suspension (their weights are loads on their own DOFs), not as a force.
+            gravity_load[iw] = w.wheel_mass * g
+                + if wheel_vehicle[k].is_some() {
+                    0.0
+                } else {
+                    w.static_load
+                };
             if let Some(ib) = body_dof[k] {
                 mass[(ib, ib)] = w.body_mass;
                 gravity_load[ib] = w.body_mass * g;
@@ -110,6 +229,20 @@ impl Simulation {
                 }
             }
             static_loads.push((w.wheel_mass + w.body_mass) * g + w.static_load);
+        }
+        for v in &vehicles {
+            let vm = &v.matrices;
+            for (r, &i) in v.dofs.iter().enumerate() {
+                for (c, &j) in v.dofs.iter().enumerate() {
+                    stiffness[(i, j)] += vm.stiffness[(r, c)];
+                    damping[(i, j)] += vm.damping[(r, c)];
+                }
+            }
+            // Own DOFs: z_c, θ_c, z_1, θ_1, z_2, θ_2 (weights on the z DOFs).
+            for (r, &i) in v.own().iter().enumerate() {
+                mass[(i, i)] = vm.mass[r];
+                gravity_load[i] = if r % 2 == 0 { vm.mass[r] * g } else { 0.0 };
+            }
         }
         let force_scale = static_loads.iter().copied().fold(0.0, f64::max);
 
@@ -142,6 +275,9 @@ impl Simulation {
                     contact_load[j] += static_loads[k] * scenario.bridge.shape(j, w.position)?;
                 }
             }
+        }
+        for v in &vehicles {
+            static_vehicle(v, &stiffness, &gravity_load, &mut q0)?;
         }
         let mut structure = Structure {
             mass,
@@ -217,6 +353,8 @@ impl Simulation {
             eq: StepEquation::default(),
             wheel_dof,
             body_dof,
+            vehicles,
+            wheel_vehicle,
             static_loads,
             force_scale,
             contact_load,
@@ -270,7 +408,10 @@ impl Simulation {
             self.samples[k] = WheelSample {
                 position: x,
                 wheel_displacement: zw,
-                body_displacement: self.body_dof[k].map_or(zw, |ib| q[ib]),
+                body_displacement: self.wheel_vehicle[k]
+                    .map(|v| self.vehicles[v].body())
+                    .or(self.body_dof[k])
+                    .map_or(zw, |ib| q[ib]),
                 body_acceleration: 0.0,
                 wheel_acceleration: 0.0,
                 approach: delta,

@@ -25,7 +25,9 @@ pub struct Singular {
     pub what: &'static str,
 }
 
-/// A block-diagonal matrix with 1×1 and 2×2 blocks, stored with the block inverses.
+/// A block-diagonal matrix (up to a permutation) with 1×1 and 2×2 blocks and dense blocks
+/// of a multibody vehicle (any index set, at most [`MAX_DENSE_BLOCK`] indices), stored with
+/// the block inverses.
 #[derive(Debug, Clone, Default)]
 pub struct BlockDiagonal {
     n: usize,
@@ -33,6 +35,25 @@ pub struct BlockDiagonal {
     blocks: Vec<(usize, usize, [f64; 4])>,
     /// The matrix entries (same layout), kept for products and dense assembly.
     entries: Vec<[f64; 4]>,
+    /// Dense blocks: indices, entries and inverse (row-major m × m).
+    dense: Vec<DenseBlock>,
+}
+
+/// Largest dense block (a bogie vehicle has 10 DOFs).
+pub const MAX_DENSE_BLOCK: usize = 16;
+
+#[derive(Debug, Clone, Default)]
+struct DenseBlock {
+    indices: Vec<usize>,
+    entries: Vec<f64>,
+    inverse: Vec<f64>,
+}
+
+/// Which matrix of a dense block [`BlockDiagonal::dense_apply`] applies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum DensePart {
+    Inverse,
+    AbsInverse,
 }
 
 /// Marker for a 1×1 block.
@@ -49,6 +70,7 @@ impl BlockDiagonal {
             n,
             blocks: Vec::with_capacity(n),
             entries: Vec::with_capacity(n),
+            dense: Vec::new(),
         }
     }
 
@@ -56,6 +78,91 @@ impl BlockDiagonal {
     pub fn clear(&mut self) {
         self.blocks.clear();
         self.entries.clear();
+        self.dense.clear();
+    }
+
+    /// Adds the dense block with row-major `entries` on `indices` (m ≤ [`MAX_DENSE_BLOCK`]);
+    /// its inverse by Gauss–Jordan elimination with partial pivoting. An error if it is
+    /// singular or not finite (the block is then not added).
+    pub fn push_dense(&mut self, indices: &[usize], entries: &[f64]) -> Result<(), Singular> {
+        let m = indices.len();
+        if m == 0 || m > MAX_DENSE_BLOCK || entries.len() != m * m {
+            return Err(SINGULAR_BLOCK);
+        }
+        let mut a = entries.to_vec();
+        let mut inv = vec![0.0; m * m];
+        for i in 0..m {
+            inv[i * m + i] = 1.0;
+        }
+        let scale = a.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+        if !(scale.is_finite() && scale > 0.0) {
+            return Err(SINGULAR_BLOCK);
+        }
+        for col in 0..m {
+            let pivot = (col..m)
+                .max_by(|&r, &q| a[r * m + col].abs().total_cmp(&a[q * m + col].abs()))
+                .unwrap_or(col);
+            if a[pivot * m + col].abs() <= 1e-14 * scale {
+                return Err(SINGULAR_BLOCK);
+            }
+            if pivot != col {
+                for j in 0..m {
+                    a.swap(pivot * m + j, col * m + j);
+                    inv.swap(pivot * m + j, col * m + j);
+                }
+            }
+            let p = a[col * m + col];
+            for j in 0..m {
+                a[col * m + j] /= p;
+                inv[col * m + j] /= p;
+            }
+            for r in 0..m {
+                if r != col {
+                    let f = a[r * m + col];
+                    if f != 0.0 {
+                        for j in 0..m {
+                            a[r * m + j] -= f * a[col * m + j];
+                            inv[r * m + j] -= f * inv[col * m + j];
+                        }
+                    }
+                }
+            }
+        }
+        if inv.iter().any(|v| !v.is_finite()) {
+            return Err(SINGULAR_BLOCK);
+        }
+        self.dense.push(DenseBlock {
+            indices: indices.to_vec(),
+            entries: entries.to_vec(),
+            inverse: inv,
+        });
+        Ok(())
+    }
+
+    /// `x ← B x` over the dense blocks (B = the inverses or their absolute values), with a
+    /// stack buffer (no allocation).
+    fn dense_apply(&self, x: &mut [f64], which: DensePart) {
+        let mut buf = [0.0; MAX_DENSE_BLOCK];
+        for b in &self.dense {
+            let m = b.indices.len();
+            let mat = &b.inverse;
+            for (r, out) in buf.iter_mut().enumerate().take(m) {
+                *out = (0..m)
+                    .map(|c| {
+                        let v = mat[r * m + c];
+                        let v = if which == DensePart::AbsInverse {
+                            v.abs()
+                        } else {
+                            v
+                        };
+                        v * x[b.indices[c]]
+                    })
+                    .sum();
+            }
+            for (r, &i) in b.indices.iter().enumerate() {
+                x[i] = buf[r];
+            }
+        }
     }
 
     /// Dimension n.
@@ -97,6 +204,7 @@ impl BlockDiagonal {
 
     /// `x ← A⁻¹ x` in place.
     pub fn solve_in_place(&self, x: &mut [f64]) {
+        self.dense_apply(x, DensePart::Inverse);
         for &(i, j, inv) in &self.blocks {
             if j == NONE {
                 x[i] *= inv[0];
@@ -111,6 +219,7 @@ impl BlockDiagonal {
     /// `x ← |A⁻¹| x` in place, with the entrywise absolute value of each block's inverse (a
     /// bound on how an error vector of x's magnitudes propagates through a solve).
     pub fn solve_abs_in_place(&self, x: &mut [f64]) {
+        self.dense_apply(x, DensePart::AbsInverse);
         for &(i, j, inv) in &self.blocks {
             if j == NONE {
                 x[i] *= inv[0].abs();
@@ -124,6 +233,12 @@ impl BlockDiagonal {
 
     /// `y = A x`.
     pub fn mul(&self, x: &[f64], y: &mut [f64]) {
+        for b in &self.dense {
+            let m = b.indices.len();
+            for (r, &i) in b.indices.iter().enumerate() {
+                y[i] = (0..m).map(|c| b.entries[r * m + c] * x[b.indices[c]]).sum();
+            }
+        }
         for (&(i, j, _), e) in self.blocks.iter().zip(&self.entries) {
             if j == NONE {
                 y[i] = e[0] * x[i];
@@ -136,6 +251,14 @@ impl BlockDiagonal {
 
     /// Writes the entries of A into the upper-left n × n corner of `mat` (the rest untouched).
     pub fn write_into(&self, mat: &mut faer::MatMut<'_, f64>) {
+        for b in &self.dense {
+            let m = b.indices.len();
+            for (r, &i) in b.indices.iter().enumerate() {
+                for (c, &j) in b.indices.iter().enumerate() {
+                    mat[(i, j)] = b.entries[r * m + c];
+                }
+            }
+        }
         for (&(i, j, _), e) in self.blocks.iter().zip(&self.entries) {
             mat[(i, i)] = e[0];
             if j != NONE {
@@ -150,6 +273,14 @@ impl BlockDiagonal {
     pub fn to_dense(&self) -> Vec<f64> {
         let n = self.n;
         let mut a = vec![0.0; n * n];
+        for b in &self.dense {
+            let m = b.indices.len();
+            for (r, &i) in b.indices.iter().enumerate() {
+                for (c, &j) in b.indices.iter().enumerate() {
+                    a[i * n + j] = b.entries[r * m + c];
+                }
+            }
+        }
         for (&(i, j, _), e) in self.blocks.iter().zip(&self.entries) {
             a[i * n + i] = e[0];
             if j != NONE {

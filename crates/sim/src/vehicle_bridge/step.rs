@@ -92,6 +92,9 @@ impl Simulation {
                 .map_err(|_| singular(j, "bridge-mode"))?;
         }
         for (k, &iw) in self.wheel_dof.iter().enumerate() {
+            if self.wheel_vehicle[k].is_some() {
+                continue; // in its vehicle's dense block
+            }
             let pushed = match self.body_dof[k] {
                 None => a.push1(iw, entry(iw, iw)),
                 Some(ib) => a.push2(
@@ -104,6 +107,18 @@ impl Simulation {
                 ),
             };
             pushed.map_err(|_| singular(iw, "wheel"))?;
+        }
+        let mut block =
+            [0.0; crate::train::bogie_vehicle::DOFS * crate::train::bogie_vehicle::DOFS];
+        for v in &self.vehicles {
+            let d = v.dofs.len();
+            for (r, &i) in v.dofs.iter().enumerate() {
+                for (c, &j) in v.dofs.iter().enumerate() {
+                    block[r * d + c] = entry(i, j);
+                }
+            }
+            a.push_dense(&v.dofs, &block[..d * d])
+                .map_err(|_| singular(v.body(), "bogie-vehicle"))?;
         }
         self.a_coefficients = key;
         Ok(())
