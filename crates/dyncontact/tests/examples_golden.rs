@@ -90,7 +90,7 @@ fn every_example_has_a_golden_test() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .filter(|n| n.ends_with(".toml"))
         .collect();
-    assert_eq!(files.len(), 18, "{files:?}");
+    assert_eq!(files.len(), 19, "{files:?}");
     let missing: Vec<&String> = files
         .iter()
         .filter(|f| !this.contains(&format!("\"{f}\"")))
@@ -284,6 +284,24 @@ fn bridge_examples_match_the_docs() {
             q("max_midspan_acceleration", 6.819, 0.001),
         ],
         docs,
+    );
+}
+
+/// docs/trains.md: two bogie vehicles over a 25 m span.
+#[test]
+fn train_example_matches_the_docs() {
+    check(
+        "train_bridge.toml",
+        &["run"],
+        &[
+            q("max_midspan_deflection", 17.378e-3, 0.001e-3),
+            q("dynamic_amplification", 1.1207, 0.0001),
+            q("contact/max_force", 224.1e3, 0.1e3),
+            q("vehicle/max_body_acceleration", 0.441, 0.001),
+            q("vehicle/static_wheel_loads/0", 109.09e3, 0.01e3),
+            n("contact/loss_of_contact_events", 0.0),
+        ],
+        "docs/trains.md",
     );
 }
 
