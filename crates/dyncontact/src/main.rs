@@ -70,7 +70,7 @@ enum Command {
         max_work: Option<f64>,
     },
     /// Solve a quasi-static contact case (TOML): normal, and tangential (shift, rolling) when
-    /// the case has [friction] and [kinematics].
+    /// the case has \[friction\] and \[kinematics\].
     Contact {
         /// Case file (TOML).
         file: PathBuf,
