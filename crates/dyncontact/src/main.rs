@@ -168,6 +168,9 @@ enum BenchTarget {
     /// The HSLM-A envelope on a 20 m simply supported bridge (f1 = 5 Hz, 3 modes): 10 trains ×
     /// 57 speeds, 140 … 420 km/h.
     Sweep,
+    /// Bogie-vehicle trains in the coupled model: µs per step against the number of wheels;
+    /// HSLM-A1 as moving forces.
+    Trains,
 }
 
 fn main() {
@@ -213,6 +216,7 @@ fn run_cli() -> Result<()> {
             BenchTarget::Coupling => vehicle_bridge_cli::bench(vehicle_bridge_cli::DEFAULT),
             BenchTarget::Tangential => bench_tangential::tangential(),
             BenchTarget::Sweep => bench::sweep(),
+            BenchTarget::Trains => bench::trains(),
         },
         Command::Sweep {
             file,
