@@ -200,6 +200,21 @@ fn dense_blocks_of_the_step_matrix_solve_and_multiply_consistently() {
     for i in 0..n {
         assert!((y[i] - x[i]).abs() < 1e-12, "{i}: {} vs {}", y[i], x[i]);
     }
+    // The sparse solve equals the full one on vectors with a few non-zeros.
+    for nonzeros in [[0usize, 5], [1, 11], [2, 2], [7, 3]] {
+        let mut full = vec![0.0; n];
+        for &i in &nonzeros {
+            full[i] = 1.0 + i as f64;
+        }
+        let mut sparse = full.clone();
+        a.solve_in_place(&mut full);
+        let mut support = Vec::new();
+        a.solve_sparse_in_place(&mut sparse, &mut support);
+        assert_eq!(full, sparse);
+        for i in 0..n {
+            assert!(support.contains(&i) || full[i] == 0.0, "{i}");
+        }
+    }
     // A singular block is an error.
     let mut b = BlockDiagonal::new(2);
     assert!(b.push_dense(&[0, 1], &[1.0, 2.0, 2.0, 4.0]).is_err());

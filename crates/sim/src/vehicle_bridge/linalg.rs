@@ -37,6 +37,15 @@ pub struct BlockDiagonal {
     entries: Vec<[f64; 4]>,
     /// Dense blocks: indices, entries and inverse (row-major m × m).
     dense: Vec<DenseBlock>,
+    /// The block of each index: `Some(Small(i))` (1×1/2×2 block i) or `Some(Dense(i))`.
+    owner: Vec<Option<Owner>>,
+}
+
+/// Which block an index belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Owner {
+    Small(usize),
+    Dense(usize),
 }
 
 /// Largest dense block (a bogie vehicle has 10 DOFs).
@@ -71,6 +80,7 @@ impl BlockDiagonal {
             blocks: Vec::with_capacity(n),
             entries: Vec::with_capacity(n),
             dense: Vec::new(),
+            owner: vec![None; n],
         }
     }
 
@@ -79,6 +89,8 @@ impl BlockDiagonal {
         self.blocks.clear();
         self.entries.clear();
         self.dense.clear();
+        self.owner.clear();
+        self.owner.resize(self.n, None);
     }
 
     /// Adds the dense block with row-major `entries` on `indices` (m ≤ [`MAX_DENSE_BLOCK`]);
@@ -131,6 +143,9 @@ impl BlockDiagonal {
         if inv.iter().any(|v| !v.is_finite()) {
             return Err(SINGULAR_BLOCK);
         }
+        for &i in indices {
+            self.owner[i] = Some(Owner::Dense(self.dense.len()));
+        }
         self.dense.push(DenseBlock {
             indices: indices.to_vec(),
             entries: entries.to_vec(),
@@ -176,6 +191,7 @@ impl BlockDiagonal {
         if a == 0.0 || !a.is_finite() {
             return Err(SINGULAR_BLOCK);
         }
+        self.owner[i] = Some(Owner::Small(self.blocks.len()));
         self.blocks.push((i, NONE, [1.0 / a, 0.0, 0.0, 0.0]));
         self.entries.push([a, 0.0, 0.0, 0.0]);
         Ok(())
@@ -196,10 +212,65 @@ impl BlockDiagonal {
         if det == 0.0 || !det.is_finite() {
             return Err(SINGULAR_BLOCK);
         }
+        self.owner[i] = Some(Owner::Small(self.blocks.len()));
+        self.owner[j] = Some(Owner::Small(self.blocks.len()));
         self.blocks
             .push((i, j, [d / det, -b / det, -c / det, a / det]));
         self.entries.push([a, b, c, d]);
         Ok(())
+    }
+
+    /// `x ← A⁻¹ x` in place for a sparse `x`: only the blocks that hold a non-zero of `x`
+    /// are applied (the others map zeros to zeros), and `support` receives the indices of
+    /// those blocks (where the result can be non-zero). Equal to [`Self::solve_in_place`].
+    pub fn solve_sparse_in_place(&self, x: &mut [f64], support: &mut Vec<usize>) {
+        support.clear();
+        let mut buf = [0.0; MAX_DENSE_BLOCK];
+        let mut last: Option<Owner> = None;
+        for i in 0..x.len() {
+            if x[i] == 0.0 {
+                continue;
+            }
+            let Some(owner) = self.owner.get(i).copied().flatten() else {
+                continue;
+            };
+            if last == Some(owner) {
+                continue;
+            }
+            last = Some(owner);
+            match owner {
+                Owner::Small(b) => {
+                    let (p, q, inv) = self.blocks[b];
+                    if support.contains(&p) {
+                        continue;
+                    }
+                    if q == NONE {
+                        x[p] *= inv[0];
+                        support.push(p);
+                    } else {
+                        let (xp, xq) = (x[p], x[q]);
+                        x[p] = inv[0] * xp + inv[1] * xq;
+                        x[q] = inv[2] * xp + inv[3] * xq;
+                        support.extend([p, q]);
+                    }
+                }
+                Owner::Dense(d) => {
+                    let blk = &self.dense[d];
+                    if support.contains(&blk.indices[0]) {
+                        continue;
+                    }
+                    let m = blk.indices.len();
+                    for (r, out) in buf.iter_mut().enumerate().take(m) {
+                        let row = &blk.inverse[r * m..(r + 1) * m];
+                        *out = row.iter().zip(&blk.indices).map(|(a, &j)| a * x[j]).sum();
+                    }
+                    for (r, &j) in blk.indices.iter().enumerate() {
+                        x[j] = buf[r];
+                    }
+                    support.extend_from_slice(&blk.indices);
+                }
+            }
+        }
     }
 
     /// `x ← A⁻¹ x` in place.
@@ -298,6 +369,8 @@ impl BlockDiagonal {
 #[derive(Debug, Default)]
 pub struct CapacitanceWork {
     ainv_g: Vec<Vec<f64>>,
+    /// Where each A⁻¹ĝ can be non-zero.
+    support: Vec<Vec<usize>>,
     /// `lu[k - 2]` factorises the k × k capacitance matrix.
     lu: Vec<DenseLu<f64>>,
 }
@@ -307,6 +380,7 @@ impl CapacitanceWork {
     pub fn new(n: usize, k_max: usize) -> Self {
         Self {
             ainv_g: vec![vec![0.0; n]; k_max],
+            support: vec![Vec::with_capacity(n); k_max],
             lu: (2..=k_max).map(DenseLu::new).collect(),
         }
     }
@@ -370,11 +444,18 @@ pub fn contact_update(
     }
     for c in 0..k {
         work.ainv_g[c].copy_from_slice(g_hat[c].as_ref());
-        a.solve_in_place(&mut work.ainv_g[c]);
+        a.solve_sparse_in_place(&mut work.ainv_g[c], &mut work.support[c]);
     }
+    // vᵀA⁻¹ĝ_c over the support of A⁻¹ĝ_c only (zero elsewhere).
+    let sparse_dot = |v: &[f64], c: usize| -> f64 {
+        work.support[c]
+            .iter()
+            .map(|&i| v[i] * work.ainv_g[c][i])
+            .sum()
+    };
     if k == 1 {
         // Sherman–Morrison: ΔF = (vᵀy + δ̃)/(1/k_c + s vᵀA⁻¹ĝ) = k_c(vᵀy + δ̃)/(1 + λ).
-        let den = compliance[0] + s * dot(v[0].as_ref(), &work.ainv_g[0]);
+        let den = compliance[0] + s * sparse_dot(v[0].as_ref(), 0);
         if den == 0.0 || !den.is_finite() {
             return Err(SINGULAR_CAPACITANCE);
         }
@@ -385,7 +466,7 @@ pub fn contact_update(
         for r in 0..k {
             for c in 0..k {
                 let diag = if r == c { compliance[r] } else { 0.0 };
-                cap[(r, c)] = diag + s * dot(v[r].as_ref(), &work.ainv_g[c]);
+                cap[(r, c)] = diag + s * sparse_dot(v[r].as_ref(), c);
             }
             df[r] = dot(v[r].as_ref(), x) + delta_tilde[r];
         }
@@ -396,8 +477,8 @@ pub fn contact_update(
     }
     for c in 0..k {
         let f = s * df[c];
-        for (xi, wi) in x.iter_mut().zip(&work.ainv_g[c]) {
-            *xi -= f * wi;
+        for &i in &work.support[c] {
+            x[i] -= f * work.ainv_g[c][i];
         }
     }
     Ok(())
