@@ -47,6 +47,40 @@ pub struct ContactSummary {
     pub loss_of_contact_events: usize,
     /// Largest contact pressure \[Pa\]; `null` for rigid contact (a constraint has no pressure).
     pub max_pressure: Option<f64>,
+    /// max over wheels and time of (W_k − F_k)/W_k (1 = a wheel fully unloaded).
+    pub max_unloading_ratio: f64,
+}
+
+/// Per bogie vehicle: peak accelerations.
+#[derive(Serialize, Clone, Copy, Default)]
+pub struct BogieVehicleMax {
+    /// Car body vertical \[m/s²\].
+    pub max_body_acceleration: f64,
+    /// Car body pitch \[rad/s²\].
+    pub max_body_pitch_acceleration: f64,
+    /// Bogies vertical \[m/s²\].
+    pub max_bogie_acceleration: f64,
+}
+
+/// The train of a `[train]` scenario.
+#[derive(Serialize)]
+pub struct TrainSummary {
+    pub name: String,
+    pub axles: usize,
+    /// First axle to last \[m\].
+    pub length: f64,
+    /// \[kg\].
+    pub mass: f64,
+}
+
+/// Passenger comfort (EN 1990 A2.4.4.3.2): the largest vertical car-body acceleration and the
+/// level it reaches.
+#[derive(Serialize)]
+pub struct ComfortSummary {
+    pub max_body_acceleration: f64,
+    /// `very good` (≤ 1.0 m/s²), `good` (≤ 1.3), `acceptable` (≤ 2.0) or `null` (worse).
+    pub level: Option<&'static str>,
+    pub levels: Vec<(&'static str, f64)>,
 }
 
 #[derive(Serialize)]
@@ -83,6 +117,15 @@ pub struct Summary {
     pub dynamic_amplification: Option<f64>,
     pub contact: ContactSummary,
     pub vehicle: VehicleSummary,
+    /// Per bogie vehicle (absent without bogie vehicles).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub vehicles: Option<Vec<BogieVehicleMax>>,
+    /// The train (absent without `[train]`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub train: Option<TrainSummary>,
+    /// Passenger comfort (trains only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub comfort: Option<ComfortSummary>,
     pub solver: SolverSummary,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub traction: Option<TractionSummaryJson>,
@@ -106,7 +149,7 @@ const MAX_STEPS: f64 = 1e9;
 /// Runs a scenario, recording every `every`-th step and `snapshots` pressure snapshots of the
 /// first wheel along its passage over the span (no CSV: as `bench` uses it).
 pub fn simulate(scenario: Scenario, every: usize, snapshots: usize) -> Result<Outcome> {
-    simulate_full(scenario, Vec::new(), None, every, snapshots, None)
+    simulate_full(scenario, Vec::new(), None, None, every, snapshots, None)
 }
 
 /// [`simulate`] with longitudinal friction (`traction`) and the recorded rows streamed to
@@ -115,6 +158,7 @@ pub fn simulate(scenario: Scenario, every: usize, snapshots: usize) -> Result<Ou
 pub fn simulate_full(
     scenario: Scenario,
     vehicles: Vec<sim::vehicle_bridge::BogieLayout>,
+    train: Option<sim::train::Train>,
     traction: Option<TractionSpec>,
     every: usize,
     snapshots: usize,
@@ -153,6 +197,8 @@ pub fn simulate_full(
     recorder.record(&sim, 0)?;
     let mut buf = Vec::new();
     let mut write_error = None;
+    let mut vehicle_max = vec![BogieVehicleMax::default(); sim.bogie_vehicle_count()];
+    let mut max_unloading = 0.0f64;
     interrupt::stop_at_next_step();
     // The run driver steps the simulation and computes the summary (maxima, amplification);
     // this observer streams the time series, takes the pressure snapshots and stops the run
@@ -163,6 +209,22 @@ pub fn simulate_full(
         {
             write_error = Some(e);
             return ControlFlow::Break(());
+        }
+        for (v, m) in vehicle_max.iter_mut().enumerate() {
+            if let Some(r) = sim.bogie_vehicle_response(v) {
+                m.max_body_acceleration = m.max_body_acceleration.max(r.body_acceleration.abs());
+                m.max_body_pitch_acceleration = m
+                    .max_body_pitch_acceleration
+                    .max(r.body_pitch_acceleration.abs());
+                for b in r.bogie_accelerations {
+                    m.max_bogie_acceleration = m.max_bogie_acceleration.max(b.abs());
+                }
+            }
+        }
+        for (w, &load) in sim.wheels().iter().zip(sim.static_loads()) {
+            if load > 0.0 {
+                max_unloading = max_unloading.max((load - w.contact.force) / load);
+            }
         }
         let x = sim.wheel_position(0);
         if next_snap < snap_positions.len() && x >= snap_positions[next_snap] {
@@ -219,7 +281,23 @@ pub fn simulate_full(
             min_force: run.min_force(),
             loss_of_contact_events: run.loss_of_contact_events,
             max_pressure: (model != "rigid").then_some(run.max_pressure()),
+            max_unloading_ratio: max_unloading,
         },
+        vehicles: (!vehicle_max.is_empty()).then(|| vehicle_max.clone()),
+        comfort: train.as_ref().map(|_| {
+            let a = run.max_body_acceleration();
+            ComfortSummary {
+                max_body_acceleration: a,
+                level: sim::sweep::eurocode::comfort_level(a),
+                levels: sim::sweep::eurocode::COMFORT_LEVELS.to_vec(),
+            }
+        }),
+        train: train.as_ref().map(|t| TrainSummary {
+            name: t.name.clone(),
+            axles: t.axles(sim::vehicle_bridge::GRAVITY).map_or(0, |a| a.len()),
+            length: t.length(),
+            mass: t.mass(),
+        }),
         vehicle: VehicleSummary {
             max_body_acceleration: run.max_body_acceleration(),
             max_wheel_acceleration: run.max_wheel_acceleration(),
@@ -314,6 +392,7 @@ pub fn run(config: VehicleBridgeConfig, out: &Path, json: bool) -> Result<()> {
     let VehicleBridgeConfig {
         scenario,
         vehicles,
+        train,
         traction,
         every,
         snapshots,
@@ -326,6 +405,7 @@ pub fn run(config: VehicleBridgeConfig, out: &Path, json: bool) -> Result<()> {
     let outcome = simulate_full(
         scenario,
         vehicles,
+        train,
         traction,
         every,
         snapshots,

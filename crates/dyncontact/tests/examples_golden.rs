@@ -300,6 +300,13 @@ fn train_example_matches_the_docs() {
             q("vehicle/max_body_acceleration", 0.441, 0.001),
             q("vehicle/static_wheel_loads/0", 109.09e3, 0.01e3),
             n("contact/loss_of_contact_events", 0.0),
+            q("contact/max_unloading_ratio", 0.764, 0.001),
+            n("train/axles", 8.0),
+            q("train/length", 46.56, 0.01),
+            q("train/mass", 88964.0, 1.0),
+            q("vehicles/1/max_body_acceleration", 0.441, 0.001),
+            q("vehicles/0/max_bogie_acceleration", 2.112, 0.001),
+            q("comfort/max_body_acceleration", 0.441, 0.001),
         ],
         "docs/trains.md",
     );

@@ -98,7 +98,7 @@ pub use run::{
     WheelSummary,
 };
 pub use scenario::{ContactModel, CouplingSolver, CouplingSpec, Integrator, Scenario, WheelSpec};
-pub use vehicles::BogieLayout;
+pub use vehicles::{BogieLayout, BogieVehicleResponse};
 
 /// Standard gravity \[m/s²\].
 pub const GRAVITY: f64 = 9.81;

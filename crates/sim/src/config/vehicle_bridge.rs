@@ -67,6 +67,8 @@ pub struct VehicleBridgeConfig {
     pub scenario: Scenario,
     /// Bogie vehicles on the scenario's wheels ([`crate::vehicle_bridge::Simulation::with_vehicles`]).
     pub vehicles: Vec<crate::vehicle_bridge::BogieLayout>,
+    /// The train of a `[train]` scenario (for the report).
+    pub train: Option<crate::train::Train>,
     /// Longitudinal friction (`[traction]`), if given.
     pub traction: Option<TractionSpec>,
     /// Record every n-th step (`output.every`).
@@ -385,9 +387,17 @@ fn train_wheels(
 /// Validates a parsed scenario file.
 pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError> {
     // Sizes first, before the bridge's modes are computed.
-    let (wheels, speed, vehicles) = match (&file.vehicle, &file.train) {
-        (Some(vehicle), None) => (vehicle_wheels(vehicle)?, vehicle.speed, Vec::new()),
-        (None, Some(train)) => train_wheels(train)?,
+    let (wheels, speed, vehicles, train) = match (&file.vehicle, &file.train) {
+        (Some(vehicle), None) => (vehicle_wheels(vehicle)?, vehicle.speed, Vec::new(), None),
+        (None, Some(table)) => {
+            let (wheels, speed, vehicles) = train_wheels(table)?;
+            (
+                wheels,
+                speed,
+                vehicles,
+                Some(super::train::build(table, "train")?),
+            )
+        }
         (Some(_), Some(_)) => {
             bail!("[train] replaces [vehicle] and [[vehicle.wheels]]: give one of them")
         }
@@ -527,6 +537,7 @@ pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError
     Ok(VehicleBridgeConfig {
         scenario,
         vehicles,
+        train,
         traction,
         every,
         snapshots,

@@ -44,3 +44,33 @@ impl VehicleDofs {
         &self.dofs[..FIRST_WHEEL]
     }
 }
+
+/// The accelerations of a bogie vehicle's body and bogies at the current state.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct BogieVehicleResponse {
+    /// Car body vertical acceleration \[m/s²\] (positive downwards).
+    pub body_acceleration: f64,
+    /// Car body pitch acceleration \[rad/s²\].
+    pub body_pitch_acceleration: f64,
+    /// Front and rear bogie vertical accelerations \[m/s²\].
+    pub bogie_accelerations: [f64; 2],
+}
+
+impl super::Simulation {
+    /// Number of bogie vehicles on the wheels.
+    pub fn bogie_vehicle_count(&self) -> usize {
+        self.vehicles.len()
+    }
+
+    /// The body and bogie accelerations of bogie vehicle `v` (running order) at the current
+    /// state; `None` if there is no such vehicle.
+    pub fn bogie_vehicle_response(&self, v: usize) -> Option<BogieVehicleResponse> {
+        let d = &self.vehicles.get(v)?.dofs;
+        let a = self.acceleration();
+        Some(BogieVehicleResponse {
+            body_acceleration: a[d[0]],
+            body_pitch_acceleration: a[d[1]],
+            bogie_accelerations: [a[d[2]], a[d[4]]],
+        })
+    }
+}
