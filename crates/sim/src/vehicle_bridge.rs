@@ -97,7 +97,9 @@ pub use run::{
     Accuracy, Extremum, NoObserver, Range, RunFailure, RunObserver, RunSummary, StepInfo,
     WheelSummary,
 };
-pub use scenario::{ContactModel, CouplingSolver, CouplingSpec, Integrator, Scenario, WheelSpec};
+pub use scenario::{
+    ContactModel, CouplingSolver, CouplingSpec, Integrator, MAX_STATIC_SAG, Scenario, WheelSpec,
+};
 pub use vehicles::{BogieLayout, BogieVehicleResponse};
 
 /// Standard gravity \[m/s²\].

@@ -364,12 +364,25 @@ fn train_wheels(
                     ("primary_stiffness", b.primary_stiffness),
                     ("secondary_stiffness", b.secondary_stiffness),
                     ("wheelset_mass", b.wheelset_mass),
+                    ("bogie_mass", b.bogie_mass),
+                    ("body_pitch_inertia", b.body_pitch_inertia),
+                    ("bogie_pitch_inertia", b.bogie_pitch_inertia),
                 ] {
                     if value <= 0.0 {
                         bail!(
                             "train vehicle {i}: `{key}` = {value}: a bogie vehicle in vehicle_bridge needs it positive"
                         );
                     }
+                }
+                // The body's static sag on both suspension stages.
+                let sag = 0.5 * b.body_mass * g / b.secondary_stiffness
+                    + (0.25 * b.body_mass + 0.5 * b.bogie_mass) * g / b.primary_stiffness;
+                if sag > crate::vehicle_bridge::MAX_STATIC_SAG {
+                    bail!(
+                        "train vehicle {i}: `primary_stiffness` = {}, `secondary_stiffness` = {}: too soft, the body would sag {sag:.3e} m under its weight (at most 10 m)",
+                        b.primary_stiffness,
+                        b.secondary_stiffness
+                    );
                 }
                 b.length
             }

@@ -6,6 +6,9 @@ use integrate::structural::StructuralMethod;
 use super::error::{check_non_negative, invalid, invalid_text};
 use super::{ContactGeometry, Irregularity, MAX_STEPS, Radau5Spec, VehicleBridgeError};
 
+/// Largest static sag of a body on its suspension \[m\] (a body frequency of 0.16 Hz).
+pub const MAX_STATIC_SAG: f64 = 10.0;
+
 /// One wheel (with its sprung body) of the vehicle; positions at t = 0.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct WheelSpec {
@@ -319,6 +322,17 @@ pub(super) fn validate(scenario: &mut Scenario) -> Result<(), VehicleBridgeError
                 key("suspension_stiffness"),
                 w.suspension_stiffness,
                 "must be positive when the wheel carries a body",
+            ));
+        }
+        // The body's static sag m_b g / k_s: beyond MAX_STATIC_SAG the "suspension" does not
+        // hold the body (a body frequency below 0.16 Hz), and an absurdly soft one overflows.
+        if w.body_mass > 0.0
+            && w.body_mass * scenario.gravity / w.suspension_stiffness > MAX_STATIC_SAG
+        {
+            return Err(invalid(
+                key("suspension_stiffness"),
+                w.suspension_stiffness,
+                "too soft: the body would sag more than 10 m under its weight (body frequency below 0.16 Hz); it must be at least body_mass × 9.81 / 10 N/m",
             ));
         }
         let load = (w.wheel_mass + w.body_mass) * scenario.gravity + w.static_load;
