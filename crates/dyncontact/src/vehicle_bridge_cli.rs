@@ -139,6 +139,8 @@ pub struct Outcome {
     /// The recorded rows, thinned to at most [`vehicle_bridge_output::PLOT_ROWS`] (for plots).
     rows: Vec<Row>,
     snapshots: Vec<(f64, Vec<(f64, f64)>)>,
+    /// The train on the bridge at a few instants (trains only).
+    train_pictures: Vec<vehicle_bridge_output::TrainPicture>,
     /// The error of the step that failed, when one did (the outputs up to it are written).
     failure: Option<anyhow::Error>,
 }
@@ -172,6 +174,24 @@ pub fn simulate_full(
     };
     let integrator = scenario.integrator.name().to_string();
     let start = Instant::now();
+    // Each vehicle's wheels (bogie vehicles: four; every other wheel its own vehicle), for the
+    // train pictures.
+    let groups: Vec<std::ops::Range<usize>> = if train.is_some() {
+        let mut groups = Vec::new();
+        let mut k = 0;
+        while k < scenario.wheels.len() {
+            let n = if vehicles.iter().any(|v| v.first_wheel == k) {
+                4
+            } else {
+                1
+            };
+            groups.push(k..k + n);
+            k += n;
+        }
+        groups
+    } else {
+        Vec::new()
+    };
     let mut sim = Simulation::with_vehicles(scenario, vehicles).map_err(|e| bad_input(e.into()))?;
     if let Some(spec) = traction {
         sim.set_traction(spec).map_err(|e| bad_input(e.into()))?;
@@ -198,6 +218,13 @@ pub fn simulate_full(
     let mut buf = Vec::new();
     let mut write_error = None;
     let mut vehicle_max = vec![BogieVehicleMax::default(); sim.bogie_vehicle_count()];
+    // Pictures when the leading wheel passes 1/4, 1/2, 3/4 of the span and the span's end.
+    let picture_at: Vec<f64> = if groups.is_empty() {
+        Vec::new()
+    } else {
+        vec![0.25 * length, 0.5 * length, 0.75 * length, length]
+    };
+    let mut pictures = Vec::new();
     let mut max_unloading = 0.0f64;
     interrupt::stop_at_next_step();
     // The run driver steps the simulation and computes the summary (maxima, amplification);
@@ -225,6 +252,10 @@ pub fn simulate_full(
             if load > 0.0 {
                 max_unloading = max_unloading.max((load - w.contact.force) / load);
             }
+        }
+        if pictures.len() < picture_at.len() && sim.wheel_position(0) >= picture_at[pictures.len()]
+        {
+            pictures.push(vehicle_bridge_output::TrainPicture::of(sim, &groups));
         }
         let x = sim.wheel_position(0);
         if next_snap < snap_positions.len() && x >= snap_positions[next_snap] {
@@ -337,6 +368,7 @@ pub fn simulate_full(
         summary,
         rows,
         snapshots: snaps,
+        train_pictures: pictures,
         failure,
     })
 }
@@ -413,6 +445,9 @@ pub fn run(config: VehicleBridgeConfig, out: &Path, json: bool) -> Result<()> {
     )?;
     output::write_json(&run_out.path("summary.json"), &outcome.summary)?;
     vehicle_bridge_output::write_plots(&run_out, &outcome.rows, &outcome.snapshots)?;
+    if !outcome.train_pictures.is_empty() {
+        vehicle_bridge_output::write_train_pictures(&run_out, &outcome.train_pictures)?;
+    }
     let completed = outcome.summary.completed;
     if !completed {
         run_out.mark_partial("timeseries.csv")?;

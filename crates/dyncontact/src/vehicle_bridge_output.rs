@@ -19,6 +19,7 @@ pub const OUTPUT_SET: &[&str] = &[
     "midspan.png",
     "vehicle.png",
     "pressure.png",
+    "train.png",
 ];
 
 /// Rows kept for the plots: beyond this the kept rows are thinned by 2 (every other one) and
@@ -296,4 +297,111 @@ mod tests {
         assert_eq!(h[5 + 12], "position_1");
         assert_eq!(header(1, false)[5..7], ["position", "wheel_z"]);
     }
+}
+
+/// The train on the bridge at one instant: the deflected track and each vehicle's wheels and
+/// body, for `train.png` (schematic vehicles; deflections to scale in mm).
+pub struct TrainPicture {
+    t: f64,
+    /// (x \[m\], deflection \[m\]) of the track along the bridge and 5 m either side.
+    track: Vec<(f64, f64)>,
+    /// Per vehicle: (x of each wheel \[m\], the wheel's track deflection \[m\]) and the car
+    /// body's displacement from its start \[m\].
+    vehicles: Vec<(Vec<(f64, f64)>, f64)>,
+}
+
+impl TrainPicture {
+    /// The picture of `sim` now; `groups` are each vehicle's wheels.
+    pub fn of(sim: &Simulation, groups: &[std::ops::Range<usize>]) -> Self {
+        let length = sim.scenario().bridge.length();
+        let deflection = |x: f64| {
+            if (0.0..=length).contains(&x) {
+                sim.deflection_at(x).unwrap_or(0.0)
+            } else {
+                0.0
+            }
+        };
+        // From behind the last wheel to 5 m past the span.
+        let last = (0..sim.wheels().len())
+            .map(|k| sim.wheel_position(k))
+            .fold(0.0f64, f64::min);
+        let (x0, x1) = (last.min(0.0) - 3.0, length + 5.0);
+        let track = (0..=200)
+            .map(|i| {
+                let x = x0 + (x1 - x0) * i as f64 / 200.0;
+                (x, deflection(x))
+            })
+            .collect();
+        let wheels = sim.wheels();
+        let vehicles = groups
+            .iter()
+            .map(|g| {
+                let at: Vec<(f64, f64)> = g
+                    .clone()
+                    .map(|k| {
+                        let x = sim.wheel_position(k);
+                        (x, deflection(x))
+                    })
+                    .collect();
+                (at, wheels[g.start].body_displacement)
+            })
+            .collect();
+        Self {
+            t: sim.t(),
+            track,
+            vehicles,
+        }
+    }
+}
+
+/// `train.png`: the train on the bridge at a few instants (y: deflection in mm, downwards
+/// plotted down; wheels as ticks on the rail, car bodies as boxes above, schematic).
+pub fn write_train_pictures(dir: &RunOutput, pictures: &[TrainPicture]) -> Result<()> {
+    let body0: Vec<f64> = pictures
+        .first()
+        .map(|p| p.vehicles.iter().map(|v| v.1).collect())
+        .unwrap_or_default();
+    let panels: Vec<Panel> = pictures
+        .iter()
+        .map(|p| {
+            // Boxes 3 … 8 mm above the level rail, moved by the body's displacement.
+            let (box_lo, box_hi) = (3.0, 8.0);
+            let mut wheels = Vec::new();
+            let mut bodies = Vec::new();
+            for (i, (at, body)) in p.vehicles.iter().enumerate() {
+                for &(x, w) in at {
+                    wheels.extend([(x, -1e3 * w), (x, -1e3 * w + 1.5), (f64::NAN, f64::NAN)]);
+                }
+                let (x0, x1) = (
+                    at.first().map_or(0.0, |a| a.0) + 0.8,
+                    at.last().map_or(0.0, |a| a.0) - 0.8,
+                );
+                // The body box moves with the body's displacement from its start (mm).
+                let dz = -1e3 * (body - body0.get(i).copied().unwrap_or(*body));
+                let (lo, hi) = (box_lo + dz, box_hi + dz);
+                bodies.extend([
+                    (x0, lo),
+                    (x1, lo),
+                    (x1, hi),
+                    (x0, hi),
+                    (x0, lo),
+                    (f64::NAN, f64::NAN),
+                ]);
+            }
+            Panel {
+                title: format!("train on the bridge at t = {:.3} s", p.t),
+                x_label: "x [m] (0 and L: the supports)".into(),
+                y_label: "deflection [mm] (vehicles schematic)".into(),
+                series: vec![
+                    Series::new(
+                        "track (deflection)",
+                        p.track.iter().map(|&(x, w)| (x, -1e3 * w)).collect(),
+                    ),
+                    Series::new("wheelsets", wheels),
+                    Series::new("car bodies (moving with the body)", bodies),
+                ],
+            }
+        })
+        .collect();
+    plot::panels(&dir.path("train.png"), &panels)
 }
