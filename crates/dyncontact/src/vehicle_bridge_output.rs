@@ -284,21 +284,6 @@ pub fn write_plots(
     Ok(())
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn header_has_the_traction_columns_after_each_wheel() {
-        let h = header(2, true);
-        assert_eq!(h.len(), 5 + 2 * 12);
-        assert_eq!(h[5 + 8], "max_pressure_0");
-        assert_eq!(h[5 + 9], "longitudinal_force_0");
-        assert_eq!(h[5 + 12], "position_1");
-        assert_eq!(header(1, false)[5..7], ["position", "wheel_z"]);
-    }
-}
-
 /// The train on the bridge at one instant: the deflected track and each vehicle's wheels and
 /// body, for `train.png` (schematic vehicles; deflections to scale in mm).
 pub struct TrainPicture {
@@ -404,4 +389,19 @@ pub fn write_train_pictures(dir: &RunOutput, pictures: &[TrainPicture]) -> Resul
         })
         .collect();
     plot::panels(&dir.path("train.png"), &panels)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn header_has_the_traction_columns_after_each_wheel() {
+        let h = header(2, true);
+        assert_eq!(h.len(), 5 + 2 * 12);
+        assert_eq!(h[5 + 8], "max_pressure_0");
+        assert_eq!(h[5 + 9], "longitudinal_force_0");
+        assert_eq!(h[5 + 12], "position_1");
+        assert_eq!(header(1, false)[5..7], ["position", "wheel_z"]);
+    }
 }
