@@ -97,6 +97,7 @@ mod first_order;
 mod linalg;
 mod linear;
 mod method;
+pub mod sparse;
 mod step_equation;
 mod stepper;
 mod system;

@@ -5,7 +5,7 @@ mod structural_support;
 
 use faer::Mat;
 use integrate::IntegrateError;
-use integrate::structural::{LinearStructure, StructuralMethod, StructuralStepper};
+use integrate::structural::{LinearStructure, StructuralMethod, StructuralStepper, sparse};
 use structural_support::oscillator;
 
 fn invalid_name(err: IntegrateError) -> &'static str {
@@ -379,6 +379,22 @@ fn linear_step_is_k_eff_times_q_equals_effective_load() {
             let mut r_vec = [0.0; 3];
             eq.effective_load(outside.mass(), outside.damping(), &f_ext, &mut r_vec)
                 .unwrap();
+            // The compressed-row form gives the same load (only the summation order differs).
+            let (m_sparse, c_sparse) = (
+                sparse::sparse_from_dense(outside.mass()),
+                sparse::sparse_from_dense(outside.damping().unwrap()),
+            );
+            let mut r_sparse = [0.0; 3];
+            eq.effective_load_sparse(
+                m_sparse.as_ref(),
+                Some(c_sparse.as_ref()),
+                &f_ext,
+                &mut r_sparse,
+            )
+            .unwrap();
+            for i in 0..3 {
+                assert!((r_sparse[i] - r_vec[i]).abs() <= 1e-12 * (1.0 + r_vec[i].abs()));
+            }
             for i in 0..3 {
                 r[(i, 0)] = r_vec[i];
             }

@@ -169,8 +169,13 @@ struct Work {
     modal_load: Vec<Vec<f64>>,
     g_hat: Vec<Vec<f64>>,
     v: Vec<Vec<f64>>,
+    /// Per wheel: where ĝ and v can be non-zero (the modes and the wheel's DOF); every
+    /// other entry of ĝ, v and their extrapolated copies stays zero.
+    pattern: Vec<Vec<usize>>,
+    /// The extrapolated start's ĝ and v per wheel, and the list of all wheels.
     g_act: Vec<Vec<f64>>,
     v_act: Vec<Vec<f64>>,
+    all_wheels: Vec<usize>,
     outputs: Vec<LawOutput>,
     delta: Vec<f64>,
     prev_force: Vec<f64>,

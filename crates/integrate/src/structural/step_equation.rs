@@ -1,6 +1,9 @@
 //! The nonlinear equation of one implicit step, in a form an outside solver can use.
 
+use faer::sparse::SparseRowMatRef;
 use faer::{MatMut, MatRef};
+
+use super::sparse::sparse_mul_add;
 
 use crate::IntegrateError;
 
@@ -189,6 +192,37 @@ impl StepEquation {
                     .sum()
             });
             *r = self.mass_coefficient * inertia + damping_force - self.history_force[i] + f_ext[i];
+        }
+        Ok(())
+    }
+
+    /// [`effective_load`](Self::effective_load) with compressed-row `M` and `C`
+    /// ([`super::sparse`]): the same formula in O(nnz).
+    pub fn effective_load_sparse(
+        &self,
+        mass: SparseRowMatRef<'_, usize, f64>,
+        damping: Option<SparseRowMatRef<'_, usize, f64>>,
+        f_ext: &[f64],
+        out: &mut [f64],
+    ) -> Result<(), IntegrateError> {
+        let n = self.dimension();
+        for (name, a) in std::iter::once(("mass", mass)).chain(damping.map(|c| ("damping", c))) {
+            if a.nrows() != n || a.ncols() != n {
+                return Err(IntegrateError::InvalidParameter {
+                    name,
+                    reason: format!("shape {}x{} (expected {n}x{n})", a.nrows(), a.ncols()),
+                });
+            }
+        }
+        self.check_len("f_ext", f_ext.len())?;
+        self.check_len("out", out.len())?;
+        for ((r, f), h) in out.iter_mut().zip(f_ext).zip(&self.history_force) {
+            *r = f - h;
+        }
+        sparse_mul_add(mass, self.mass_coefficient, &self.q_pred, out);
+        if let Some(c) = damping {
+            sparse_mul_add(c, self.damping_coefficient, &self.q_pred, out);
+            sparse_mul_add(c, -(1.0 - self.alpha_f), &self.v_pred, out);
         }
         Ok(())
     }

@@ -3,6 +3,7 @@
 
 use beam::Derivative;
 use faer::{Mat, MatRef};
+use integrate::structural::sparse::{SparseMatrix, sparse_from_dense, sparse_mul};
 use integrate::structural::{StepEquation, StructuralMethod, StructuralStepper, StructuralSystem};
 
 use halfspace::law::{ContactModel as LawModel, LawOutput};
@@ -18,6 +19,11 @@ pub(super) struct Structure {
     pub(super) mass: Mat<f64>,
     pub(super) damping: Mat<f64>,
     pub(super) stiffness: Mat<f64>,
+    /// Compressed-row copies of M, C and K (the products of a step in O(nnz): the modal
+    /// blocks are diagonal and each vehicle's block is small).
+    pub(super) mass_sparse: SparseMatrix,
+    pub(super) damping_sparse: SparseMatrix,
+    pub(super) stiffness_sparse: SparseMatrix,
     pub(super) gravity_load: Vec<f64>,
     /// Contact load added to the external force (used for the consistent start acceleration).
     pub(super) contact_load: Vec<f64>,
@@ -34,10 +40,7 @@ impl StructuralSystem for Structure {
         Some(self.damping.as_ref())
     }
     fn internal_force(&mut self, q: &[f64], f_int: &mut [f64]) {
-        let n = q.len();
-        for (i, f) in f_int.iter_mut().enumerate() {
-            *f = (0..n).map(|j| self.stiffness[(i, j)] * q[j]).sum();
-        }
+        sparse_mul(self.stiffness_sparse.as_ref(), q, f_int);
     }
     fn tangent_stiffness(&mut self, _q: &[f64], mut k: faer::MatMut<'_, f64>) -> bool {
         k.copy_from(self.stiffness.as_ref());
@@ -280,6 +283,9 @@ impl Simulation {
             static_vehicle(v, &stiffness, &gravity_load, &mut q0)?;
         }
         let mut structure = Structure {
+            mass_sparse: sparse_from_dense(mass.as_ref()),
+            damping_sparse: sparse_from_dense(damping.as_ref()),
+            stiffness_sparse: sparse_from_dense(stiffness.as_ref()),
             mass,
             damping,
             stiffness,
@@ -324,8 +330,13 @@ impl Simulation {
             modal_load: vec![vec![0.0; m]; nw],
             g_hat: vec![vec![0.0; n]; nw],
             v: vec![vec![0.0; n]; nw],
+            pattern: wheel_dof
+                .iter()
+                .map(|&iw| (0..m).chain([iw]).collect())
+                .collect(),
             g_act: vec![vec![0.0; n]; nw],
             v_act: vec![vec![0.0; n]; nw],
+            all_wheels: (0..nw).collect(),
             outputs: vec![LawOutput::default(); nw],
             delta: vec![0.0; nw],
             prev_force: vec![0.0; nw],

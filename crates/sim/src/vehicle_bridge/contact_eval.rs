@@ -71,9 +71,9 @@ impl Simulation {
             let load = &mut w.modal_load[k];
             load.fill(0.0);
             add_modal_load(&w.shape_at_columns[k], &w.column_force[k], 1.0, load);
+            // ĝ and v live on the modes and the wheel (`Work::pattern`); nothing else is
+            // ever written, so the other entries stay zero.
             let (gh, v) = (&mut w.g_hat[k], &mut w.v[k]);
-            gh.fill(0.0);
-            v.fill(0.0);
             for j in 0..m {
                 v[j] = -shapes[j];
                 gh[j] = if out.force > 0.0 {

@@ -5,7 +5,7 @@
 use super::accept::{Accepted, StateUpdate};
 use super::contact::is_rigid;
 use super::contact_eval::add_modal_load;
-use super::linalg::{self, contact_update, dense_contact_update};
+use super::linalg::{contact_update, dense_contact_update};
 use super::step::StepFailure;
 use super::{CouplingSolver, Simulation, VehicleBridgeError};
 
@@ -46,9 +46,9 @@ impl Simulation {
             }
             let cols: f64 = w.column_force[k].iter().sum();
             let scale = force / cols;
+            // Only the pattern (modes and the wheel) is ever written, so the rest stays zero.
             let (gh, v) = (&mut w.g_act[k], &mut w.v_act[k]);
-            gh.fill(0.0);
-            v.fill(0.0);
+            gh[..m].fill(0.0);
             // I_k at the new position, held in `gh` first.
             add_modal_load(
                 &w.shape_at_columns[k],
@@ -71,8 +71,10 @@ impl Simulation {
         let solved = contact_update(
             &self.a_matrix,
             s,
-            &w.g_act[..nw],
-            &w.v_act[..nw],
+            &w.g_act,
+            &w.v_act,
+            &w.pattern,
+            &w.all_wheels,
             &w.compliance[..nw],
             &w.delta_tilde[..nw],
             &mut w.res,
@@ -123,15 +125,17 @@ impl Simulation {
             let approach_scale = w.x[iw].abs()
                 + (0..m).map(|j| (w.x[j] * shapes[j]).abs()).sum::<f64>()
                 + w.r_at_wheel[k].abs();
-            let propagated: f64 = w.v[k].iter().zip(e.iter()).map(|(v, y)| v.abs() * y).sum();
-            w.floor_ainv_g.copy_from_slice(&w.g_hat[k]);
-            self.a_matrix.solve_in_place(&mut w.floor_ainv_g);
+            let pattern = &w.pattern[k];
+            let propagated: f64 = pattern.iter().map(|&i| w.v[k][i].abs() * e[i]).sum();
+            let v_ainv_g = w
+                .cap
+                .quadratic_form(&self.a_matrix, &w.g_hat[k], &w.v[k], pattern);
             let compliance = if is_rigid(&self.contacts[k]) || w.outputs[k].stiffness <= 0.0 {
                 0.0
             } else {
                 1.0 / w.outputs[k].stiffness
             };
-            let den = compliance + s * linalg::dot(&w.v[k], &w.floor_ainv_g).abs();
+            let den = compliance + s * v_ainv_g.abs();
             if den > 0.0 && den.is_finite() {
                 let f = 32.0 * f64::EPSILON * (propagated + approach_scale) / den;
                 floor = floor.max(f);
@@ -159,9 +163,9 @@ impl Simulation {
                 self.structure.gravity_load[i] + self.eq.alpha_f * self.contact_load[i];
         }
         self.eq
-            .effective_load(
-                self.structure.mass.as_ref(),
-                Some(self.structure.damping.as_ref()),
+            .effective_load_sparse(
+                self.structure.mass_sparse.as_ref(),
+                Some(self.structure.damping_sparse.as_ref()),
                 &self.work.f_ext,
                 &mut self.work.r,
             )
@@ -288,18 +292,14 @@ impl Simulation {
                         }
                     }
                     let ka = w.active.len();
-                    // The active wheels' vectors, copied into preallocated rows (no allocation).
-                    for (a, &k) in w.active.iter().enumerate() {
-                        w.g_act[a].copy_from_slice(&w.g_hat[k]);
-                        w.v_act[a].copy_from_slice(&w.v[k]);
-                    }
-                    let (g_hat, v) = (&w.g_act[..ka], &w.v_act[..ka]);
                     let solved = if solver == CouplingSolver::QuasiNewton {
                         contact_update(
                             &self.a_matrix,
                             s,
-                            g_hat,
-                            v,
+                            &w.g_hat,
+                            &w.v,
+                            &w.pattern,
+                            &w.active,
                             &w.compliance[..ka],
                             &w.delta_tilde[..ka],
                             &mut w.res,
@@ -310,8 +310,9 @@ impl Simulation {
                         dense_contact_update(
                             &self.a_matrix,
                             s,
-                            g_hat,
-                            v,
+                            &w.g_hat,
+                            &w.v,
+                            &w.active,
                             &w.compliance[..ka],
                             &w.delta_tilde[..ka],
                             &mut w.res,

@@ -220,6 +220,82 @@ impl BlockDiagonal {
         Ok(())
     }
 
+    /// Number of blocks (small and dense): the range of [`Self::block_of`].
+    pub fn block_count(&self) -> usize {
+        self.blocks.len() + self.dense.len()
+    }
+
+    /// The block holding index `i` (an id below [`Self::block_count`]), if any.
+    pub fn block_of(&self, i: usize) -> Option<usize> {
+        match self.owner.get(i).copied().flatten()? {
+            Owner::Small(b) => Some(b),
+            Owner::Dense(d) => Some(self.blocks.len() + d),
+        }
+    }
+
+    /// `x ← A⁻¹ x` for an `x` that is zero outside `pattern` (and zero on the blocks it does
+    /// not touch, which is kept): only the blocks holding a non-zero of `x` at a pattern index
+    /// are applied. `support` receives the indices where the result can be non-zero, `blocks`
+    /// the ids of the blocks applied; `mark` (one entry per block, see
+    /// [`Self::block_count`]) must not hold `stamp` on entry and holds it on the applied
+    /// blocks on exit. Cost O(|pattern| + the sizes of the blocks applied), independent of n.
+    pub fn solve_pattern_in_place(
+        &self,
+        x: &mut [f64],
+        pattern: &[usize],
+        support: &mut Vec<usize>,
+        blocks: &mut Vec<usize>,
+        mark: &mut [u64],
+        stamp: u64,
+    ) {
+        support.clear();
+        blocks.clear();
+        let mut buf = [0.0; MAX_DENSE_BLOCK];
+        for &i in pattern {
+            if x[i] == 0.0 {
+                continue;
+            }
+            let Some(owner) = self.owner.get(i).copied().flatten() else {
+                continue;
+            };
+            let id = match owner {
+                Owner::Small(b) => b,
+                Owner::Dense(d) => self.blocks.len() + d,
+            };
+            if mark[id] == stamp {
+                continue;
+            }
+            mark[id] = stamp;
+            blocks.push(id);
+            match owner {
+                Owner::Small(b) => {
+                    let (p, q, inv) = self.blocks[b];
+                    if q == NONE {
+                        x[p] *= inv[0];
+                        support.push(p);
+                    } else {
+                        let (xp, xq) = (x[p], x[q]);
+                        x[p] = inv[0] * xp + inv[1] * xq;
+                        x[q] = inv[2] * xp + inv[3] * xq;
+                        support.extend([p, q]);
+                    }
+                }
+                Owner::Dense(d) => {
+                    let blk = &self.dense[d];
+                    let m = blk.indices.len();
+                    for (r, out) in buf.iter_mut().enumerate().take(m) {
+                        let row = &blk.inverse[r * m..(r + 1) * m];
+                        *out = row.iter().zip(&blk.indices).map(|(a, &j)| a * x[j]).sum();
+                    }
+                    for (r, &j) in blk.indices.iter().enumerate() {
+                        x[j] = buf[r];
+                    }
+                    support.extend_from_slice(&blk.indices);
+                }
+            }
+        }
+    }
+
     /// `x ← A⁻¹ x` in place for a sparse `x`: only the blocks that hold a non-zero of `x`
     /// are applied (the others map zeros to zeros), and `support` receives the indices of
     /// those blocks (where the result can be non-zero). Equal to [`Self::solve_in_place`].
@@ -364,15 +440,32 @@ impl BlockDiagonal {
     }
 }
 
-/// Work space of [`contact_update`] for up to `k_max` wheels: A⁻¹ĝ per wheel and one LU of
-/// each capacitance-matrix size 2..=k_max (allocated once).
+/// Work space of [`contact_update`]: A⁻¹ĝ per wheel with its support and blocks, the
+/// coupling groups, and the LU storage of each capacitance size met (allocated at its first
+/// use, then reused).
 #[derive(Debug, Default)]
 pub struct CapacitanceWork {
     ainv_g: Vec<Vec<f64>>,
-    /// Where each A⁻¹ĝ can be non-zero.
+    /// Where each A⁻¹ĝ can be non-zero (all other entries of `ainv_g[c]` are zero).
     support: Vec<Vec<usize>>,
-    /// `lu[k - 2]` factorises the k × k capacitance matrix.
+    /// The blocks of A each A⁻¹ĝ touches.
+    blocks: Vec<Vec<usize>>,
+    /// Per block of A: the stamp of the last solve that applied it.
+    mark: Vec<u64>,
+    /// Per block of A: (stamp, first wheel of this update that touched it).
+    first: Vec<(u64, usize)>,
+    stamp: u64,
+    /// Union–find parents of the active wheels (coupling groups).
+    parent: Vec<usize>,
+    /// The active wheels ordered by group, and the start of each group in it.
+    order: Vec<usize>,
+    group_start: Vec<usize>,
+    rhs: Vec<f64>,
     lu: Vec<DenseLu<f64>>,
+    /// Scratch of [`Self::quadratic_form`] (kept zero between calls).
+    scratch: Vec<f64>,
+    scratch_support: Vec<usize>,
+    scratch_blocks: Vec<usize>,
 }
 
 impl CapacitanceWork {
@@ -380,10 +473,77 @@ impl CapacitanceWork {
     pub fn new(n: usize, k_max: usize) -> Self {
         Self {
             ainv_g: vec![vec![0.0; n]; k_max],
-            support: vec![Vec::with_capacity(n); k_max],
-            lu: (2..=k_max).map(DenseLu::new).collect(),
+            support: vec![Vec::new(); k_max],
+            blocks: vec![Vec::new(); k_max],
+            ..Self::default()
         }
     }
+
+    /// Makes room for `k` wheels of dimension `n` and `blocks` blocks of A (allocates only
+    /// when they grow).
+    fn reserve(&mut self, n: usize, k: usize, blocks: usize) {
+        if self.ainv_g.first().is_some_and(|a| a.len() != n) {
+            self.ainv_g.clear();
+            self.support.clear();
+            self.blocks.clear();
+        }
+        while self.ainv_g.len() < k {
+            self.ainv_g.push(vec![0.0; n]);
+            self.support.push(Vec::new());
+            self.blocks.push(Vec::new());
+        }
+        if self.mark.len() != blocks {
+            self.mark = vec![0; blocks];
+            self.first = vec![(0, 0); blocks];
+            self.stamp = 0;
+        }
+    }
+
+    /// `vᵀA⁻¹g` for vectors zero outside `pattern` (over the blocks g touches; no full solve).
+    pub fn quadratic_form(
+        &mut self,
+        a: &BlockDiagonal,
+        g: &[f64],
+        v: &[f64],
+        pattern: &[usize],
+    ) -> f64 {
+        let n = g.len();
+        if self.scratch.len() != n {
+            self.scratch = vec![0.0; n];
+        }
+        self.reserve(n, 0, a.block_count());
+        for &i in pattern {
+            self.scratch[i] = g[i];
+        }
+        let stamp = self.next_stamp();
+        a.solve_pattern_in_place(
+            &mut self.scratch,
+            pattern,
+            &mut self.scratch_support,
+            &mut self.scratch_blocks,
+            &mut self.mark,
+            stamp,
+        );
+        let result = pattern.iter().map(|&i| v[i] * self.scratch[i]).sum();
+        for &i in self.scratch_support.iter().chain(pattern) {
+            self.scratch[i] = 0.0;
+        }
+        result
+    }
+
+    /// The next stamp (never 0, the initial mark).
+    fn next_stamp(&mut self) -> u64 {
+        self.stamp += 1;
+        self.stamp
+    }
+}
+
+fn find(parent: &mut [usize], mut a: usize) -> usize {
+    while parent[a] != a {
+        parent[a] = parent[parent[a]];
+        a = parent[a];
+    }
+    a
 }
 
 /// Work space of [`dense_contact_update`]: the LU of each bordered size n + k met so far
@@ -421,59 +581,135 @@ fn lu_of_size(lus: &mut Vec<DenseLu<f64>>, m: usize) -> &mut DenseLu<f64> {
 ///
 /// For compliant contacts this is the Woodbury formula for `(A + s Ĝ K_c Vᵀ)⁻¹` (capacitance
 /// matrix scaled by K_c⁻¹) and, for one wheel, Sherman–Morrison with the denominator
-/// `1 + λ`, `λ = s k_c vᵀA⁻¹ĝ` (references.md §D4.2). On entry `x` holds −R; on exit Δx, and `df`
-/// holds ΔF. An error if the capacitance matrix is singular.
+/// `1 + λ`, `λ = s k_c vᵀA⁻¹ĝ` (references.md §D4.2).
+///
+/// **Sparsity.** Wheel c's vectors ĝ_c and v_c are zero outside `pattern[c]` (the bridge modes
+/// and the wheel's own DOF), so A⁻¹ĝ_c is non-zero only on the blocks of A that ĝ_c touches.
+/// Two wheels are coupled (a non-zero capacitance entry) only if they touch a common block:
+/// wheels on the span share the modes, wheels of one vehicle share its block. The capacitance
+/// matrix is therefore block diagonal over the groups of coupled wheels (union–find over the
+/// blocks), and each group is factorised on its own: a long train whose cars are mostly off the
+/// span costs O(wheels), not O(wheels³).
+///
+/// Arguments: `active` lists the wheels taking part (indices into `g_hat`, `v`, `pattern`);
+/// `compliance`, `delta_tilde` and `df` are indexed by position in `active`. On entry `x` holds
+/// −R; on exit Δx, and `df` holds ΔF. An error if a capacitance matrix is singular.
+#[allow(clippy::too_many_arguments)]
 pub fn contact_update(
     a: &BlockDiagonal,
     s: f64,
     g_hat: &[impl AsRef<[f64]>],
     v: &[impl AsRef<[f64]>],
+    pattern: &[impl AsRef<[usize]>],
+    active: &[usize],
     compliance: &[f64],
     delta_tilde: &[f64],
     x: &mut [f64],
     df: &mut [f64],
     work: &mut CapacitanceWork,
 ) -> Result<(), Singular> {
-    let k = g_hat.len();
+    let k = active.len();
     a.solve_in_place(x);
     if k == 0 {
         return Ok(());
     }
-    if work.ainv_g.len() < k || work.ainv_g[0].len() != x.len() {
-        *work = CapacitanceWork::new(x.len(), k);
+    let n = x.len();
+    work.reserve(n, k, a.block_count());
+    // A⁻¹ĝ_c on the blocks ĝ_c touches (the rest of ainv_g[c] is kept zero).
+    for (c, &wheel) in active.iter().enumerate() {
+        for &i in &work.support[c] {
+            work.ainv_g[c][i] = 0.0;
+        }
+        let g = g_hat[wheel].as_ref();
+        let p = pattern[wheel].as_ref();
+        for &i in p {
+            work.ainv_g[c][i] = g[i];
+        }
+        let stamp = work.next_stamp();
+        a.solve_pattern_in_place(
+            &mut work.ainv_g[c],
+            p,
+            &mut work.support[c],
+            &mut work.blocks[c],
+            &mut work.mark,
+            stamp,
+        );
     }
+    // Coupling groups: wheels touching a common block.
+    let update = work.next_stamp();
+    work.parent.clear();
+    work.parent.extend(0..k);
     for c in 0..k {
-        work.ainv_g[c].copy_from_slice(g_hat[c].as_ref());
-        a.solve_sparse_in_place(&mut work.ainv_g[c], &mut work.support[c]);
+        for &b in &work.blocks[c] {
+            let (seen, first) = work.first[b];
+            if seen == update {
+                let (ra, rb) = (find(&mut work.parent, c), find(&mut work.parent, first));
+                if ra != rb {
+                    work.parent[ra.max(rb)] = ra.min(rb);
+                }
+            } else {
+                work.first[b] = (update, c);
+            }
+        }
     }
-    // vᵀA⁻¹ĝ_c over the support of A⁻¹ĝ_c only (zero elsewhere).
-    let sparse_dot = |v: &[f64], c: usize| -> f64 {
-        work.support[c]
+    // Group the wheels (stable: by root, then position; roots are the smallest member).
+    work.order.clear();
+    work.group_start.clear();
+    for c in 0..k {
+        let root = find(&mut work.parent, c);
+        work.parent[c] = root;
+    }
+    for root in 0..k {
+        if work.parent[root] != root {
+            continue;
+        }
+        work.group_start.push(work.order.len());
+        for c in root..k {
+            if work.parent[c] == root {
+                work.order.push(c);
+            }
+        }
+    }
+    work.group_start.push(k);
+    // vᵀx over the pattern (v is zero elsewhere).
+    let v_dot = |c: usize, y: &[f64]| -> f64 {
+        let vc = v[active[c]].as_ref();
+        pattern[active[c]]
+            .as_ref()
             .iter()
-            .map(|&i| v[i] * work.ainv_g[c][i])
+            .map(|&i| vc[i] * y[i])
             .sum()
     };
-    if k == 1 {
-        // Sherman–Morrison: ΔF = (vᵀy + δ̃)/(1/k_c + s vᵀA⁻¹ĝ) = k_c(vᵀy + δ̃)/(1 + λ).
-        let den = compliance[0] + s * sparse_dot(v[0].as_ref(), 0);
-        if den == 0.0 || !den.is_finite() {
-            return Err(SINGULAR_CAPACITANCE);
-        }
-        df[0] = (dot(v[0].as_ref(), x) + delta_tilde[0]) / den;
-    } else {
-        let lu = &mut work.lu[k - 2];
-        let mut cap = lu.matrix_mut();
-        for r in 0..k {
-            for c in 0..k {
-                let diag = if r == c { compliance[r] } else { 0.0 };
-                cap[(r, c)] = diag + s * sparse_dot(v[r].as_ref(), c);
+    for g in 0..work.group_start.len() - 1 {
+        let members = &work.order[work.group_start[g]..work.group_start[g + 1]];
+        let kg = members.len();
+        if kg == 1 {
+            // Sherman–Morrison: ΔF = (vᵀy + δ̃)/(1/k_c + s vᵀA⁻¹ĝ) = k_c(vᵀy + δ̃)/(1 + λ).
+            let c = members[0];
+            let den = compliance[c] + s * v_dot(c, &work.ainv_g[c]);
+            if den == 0.0 || !den.is_finite() {
+                return Err(SINGULAR_CAPACITANCE);
             }
-            df[r] = dot(v[r].as_ref(), x) + delta_tilde[r];
+            df[c] = (v_dot(c, x) + delta_tilde[c]) / den;
+            continue;
+        }
+        let lu = lu_of_size(&mut work.lu, kg);
+        let mut cap = lu.matrix_mut();
+        work.rhs.clear();
+        for (r, &cr) in members.iter().enumerate() {
+            for (q, &cq) in members.iter().enumerate() {
+                let diag = if r == q { compliance[cr] } else { 0.0 };
+                cap[(r, q)] = diag + s * v_dot(cr, &work.ainv_g[cq]);
+            }
+            work.rhs.push(v_dot(cr, x) + delta_tilde[cr]);
         }
         if !lu.factor() {
             return Err(SINGULAR_CAPACITANCE);
         }
-        lu.solve_in_place(&mut df[..k]);
+        lu.solve_in_place(&mut work.rhs);
+        for (r, &cr) in members.iter().enumerate() {
+            df[cr] = work.rhs[r];
+        }
     }
     for c in 0..k {
         let f = s * df[c];
@@ -497,11 +733,13 @@ const SINGULAR_CAPACITANCE: Singular = Singular {
 ///
 /// (the reference "full Newton" solve). Same argument conventions; `work` keeps the LU
 /// storage of each size met.
+#[allow(clippy::too_many_arguments)]
 pub fn dense_contact_update(
     a: &BlockDiagonal,
     s: f64,
     g_hat: &[impl AsRef<[f64]>],
     v: &[impl AsRef<[f64]>],
+    active: &[usize],
     compliance: &[f64],
     delta_tilde: &[f64],
     x: &mut [f64],
@@ -509,7 +747,7 @@ pub fn dense_contact_update(
     work: &mut DenseWork,
 ) -> Result<(), Singular> {
     let n = x.len();
-    let k = g_hat.len();
+    let k = active.len();
     let m = n + k;
     let rhs = &mut work.rhs;
     rhs.clear();
@@ -519,13 +757,13 @@ pub fn dense_contact_update(
     mat.fill(0.0);
     a.write_into(&mut mat);
     for i in 0..n {
-        for c in 0..k {
-            mat[(i, n + c)] = s * g_hat[c].as_ref()[i];
+        for (c, &wheel) in active.iter().enumerate() {
+            mat[(i, n + c)] = s * g_hat[wheel].as_ref()[i];
         }
         rhs[i] = x[i];
     }
-    for c in 0..k {
-        for (j, &vj) in v[c].as_ref().iter().enumerate() {
+    for (c, &wheel) in active.iter().enumerate() {
+        for (j, &vj) in v[wheel].as_ref().iter().enumerate() {
             mat[(n + c, j)] = vj;
         }
         mat[(n + c, n + c)] = -compliance[c];

@@ -1,7 +1,7 @@
 //! The explicit steps: Störmer–Verlet, leapfrog and explicit Newmark.
 
 use super::super::StructuralSystem;
-use super::super::linalg::mat_vec_add;
+use super::super::sparse::sparse_mul_add;
 use crate::IntegrateError;
 
 use super::{StructuralStepper, finite_or_error};
@@ -77,11 +77,11 @@ impl StructuralStepper {
         for i in 0..w.residual.len() {
             w.residual[i] = w.f_ext[i] - w.f_int[i];
         }
-        let Some(damping) = &self.damping else {
+        let (Some(damping), Some(damping_sparse)) = (&self.damping, &self.damping_sparse) else {
             self.mass_lu.solve_in_place(&mut w.residual);
             return finite_or_error(&w.residual, t);
         };
-        mat_vec_add(damping.as_ref(), -1.0, &w.half, &mut w.residual);
+        sparse_mul_add(damping_sparse.as_ref(), -1.0, &w.half, &mut w.residual);
         if c == 0.0 {
             self.mass_lu.solve_in_place(&mut w.residual);
             return finite_or_error(&w.residual, t);

@@ -1,7 +1,8 @@
 //! The implicit step: kinematic coefficients, the step equation, Newton's method and the
 //! corrector.
 
-use super::super::linalg::{check_vector, mat_vec_add, norm_inf};
+use super::super::linalg::{check_vector, norm_inf};
+use super::super::sparse::sparse_mul_add;
 use super::super::{StepEquation, StructuralMethod, StructuralSystem};
 use crate::IntegrateError;
 
@@ -160,15 +161,24 @@ impl StructuralStepper {
         eq.q_pred.resize(n, 0.0);
         eq.v_pred.resize(n, 0.0);
         eq.history_force.resize(n, 0.0);
+        let mass = self.mass_sparse.as_ref();
+        let (row_ptr, col_idx, mass_val) = (
+            mass.symbolic().row_ptr(),
+            mass.symbolic().col_idx(),
+            mass.val(),
+        );
         for i in 0..n {
             (eq.q_pred[i], eq.v_pred[i]) = self.predict(&k, dt, i);
-            let inertia: f64 = (0..n)
-                .map(|j| self.mass[(i, j)] * self.start_acceleration(&k, j))
+            let row = row_ptr[i]..row_ptr[i + 1];
+            let inertia: f64 = col_idx[row.clone()]
+                .iter()
+                .zip(&mass_val[row])
+                .map(|(&j, m)| m * self.start_acceleration(&k, j))
                 .sum();
             eq.history_force[i] = k.alpha_m * inertia + k.alpha_f * self.f_int[i];
         }
-        if let Some(c) = &self.damping {
-            mat_vec_add(c.as_ref(), k.alpha_f, &self.v, &mut eq.history_force);
+        if let Some(c) = &self.damping_sparse {
+            sparse_mul_add(c.as_ref(), k.alpha_f, &self.v, &mut eq.history_force);
         }
         eq.displacement_per_acceleration = k.c_qa;
         eq.velocity_per_acceleration = k.c_va;

@@ -14,7 +14,8 @@ pub use implicit::NewtonOptions;
 
 use faer::Mat;
 
-use super::linalg::{check_matrix, check_vector, mat_vec_add};
+use super::linalg::{check_matrix, check_vector};
+use super::sparse::{SparseMatrix, sparse_from_dense, sparse_mul_add};
 use super::{StepEquation, StructuralMethod, StructuralSystem};
 use crate::lu::DenseLu;
 use crate::{IntegrateError, Stats};
@@ -84,6 +85,9 @@ pub struct StructuralStepper {
     /// The massless DOFs: row and column of `M` entirely zero.
     massless: Vec<usize>,
     damping: Option<Mat<f64>>,
+    /// Compressed-row copies of `M` and `C` for the products of a step (O(nnz)).
+    mass_sparse: SparseMatrix,
+    damping_sparse: Option<SparseMatrix>,
     t: f64,
     q: Vec<f64>,
     v: Vec<f64>,
@@ -216,8 +220,8 @@ impl StructuralStepper {
         for ((r, fe), fi) in w.residual.iter_mut().zip(&w.f_ext).zip(&self.f_int) {
             *r = fe - fi;
         }
-        if let Some(c) = &self.damping {
-            mat_vec_add(c.as_ref(), -1.0, &self.v, &mut w.residual);
+        if let Some(c) = &self.damping_sparse {
+            sparse_mul_add(c.as_ref(), -1.0, &self.v, &mut w.residual);
         }
         self.mass_lu.solve_in_place(&mut w.residual);
         for &i in &self.massless {
@@ -315,6 +319,8 @@ impl StructuralStepper {
         Ok(Self {
             method,
             newton: NewtonOptions::default(),
+            mass_sparse: sparse_from_dense(mass.as_ref()),
+            damping_sparse: damping.as_ref().map(|c| sparse_from_dense(c.as_ref())),
             mass,
             mass_lu,
             massless,
