@@ -159,7 +159,7 @@ pub fn simulate(scenario: Scenario, every: usize, snapshots: usize) -> Result<Ou
 /// early, with `completed = false`, on an interrupt (Ctrl-C) or a failed step.
 pub fn simulate_full(
     scenario: Scenario,
-    vehicles: Vec<sim::vehicle_bridge::BogieLayout>,
+    vehicles: Vec<sim::vehicle_bridge::VehicleLayout>,
     train: Option<sim::train::Train>,
     traction: Option<TractionSpec>,
     every: usize,
@@ -180,11 +180,10 @@ pub fn simulate_full(
         let mut groups = Vec::new();
         let mut k = 0;
         while k < scenario.wheels.len() {
-            let n = if vehicles.iter().any(|v| v.first_wheel == k) {
-                4
-            } else {
-                1
-            };
+            let n = vehicles
+                .iter()
+                .find(|v| v.first_wheel == k)
+                .map_or(1, |v| v.vehicle.wheelsets());
             groups.push(k..k + n);
             k += n;
         }
@@ -217,7 +216,7 @@ pub fn simulate_full(
     recorder.record(&sim, 0)?;
     let mut buf = Vec::new();
     let mut write_error = None;
-    let mut vehicle_max = vec![BogieVehicleMax::default(); sim.bogie_vehicle_count()];
+    let mut vehicle_max = vec![BogieVehicleMax::default(); sim.multibody_vehicle_count()];
     // Pictures when the leading wheel passes 1/4, 1/2, 3/4 of the span and the span's end.
     let picture_at: Vec<f64> = if groups.is_empty() {
         Vec::new()
@@ -238,14 +237,12 @@ pub fn simulate_full(
             return ControlFlow::Break(());
         }
         for (v, m) in vehicle_max.iter_mut().enumerate() {
-            if let Some(r) = sim.bogie_vehicle_response(v) {
+            if let Some(r) = sim.vehicle_response(v) {
                 m.max_body_acceleration = m.max_body_acceleration.max(r.body_acceleration.abs());
                 m.max_body_pitch_acceleration = m
                     .max_body_pitch_acceleration
                     .max(r.body_pitch_acceleration.abs());
-                for b in r.bogie_accelerations {
-                    m.max_bogie_acceleration = m.max_bogie_acceleration.max(b.abs());
-                }
+                m.max_bogie_acceleration = m.max_bogie_acceleration.max(r.bogie_acceleration.abs());
             }
         }
         for (w, &load) in sim.wheels().iter().zip(sim.static_loads()) {

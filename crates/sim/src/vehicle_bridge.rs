@@ -100,7 +100,7 @@ pub use run::{
 pub use scenario::{
     ContactModel, CouplingSolver, CouplingSpec, Integrator, MAX_STATIC_SAG, Scenario, WheelSpec,
 };
-pub use vehicles::{BogieLayout, BogieVehicleResponse};
+pub use vehicles::{MultibodyVehicle, VehicleLayout, VehicleResponse};
 
 /// Standard gravity \[m/s²\].
 pub const GRAVITY: f64 = 9.81;

@@ -70,16 +70,13 @@ fn the_static_start_carries_each_wheelset_load() {
         assert!(s.body_acceleration.abs() < 1e-6, "{}", s.body_acceleration);
     }
     assert!((sim.wheels()[0].body_displacement - body0).abs() < 1e-9);
-    assert_eq!(sim.bogie_vehicle_count(), 2);
+    assert_eq!(sim.multibody_vehicle_count(), 2);
     for v in 0..2 {
-        let r = sim.bogie_vehicle_response(v).unwrap();
+        let r = sim.vehicle_response(v).unwrap();
         assert!(r.body_acceleration.abs() < 1e-6 && r.body_pitch_acceleration.abs() < 1e-6);
-        assert!(
-            r.bogie_accelerations.iter().all(|a| a.abs() < 1e-6),
-            "{r:?}"
-        );
+        assert!(r.bogie_acceleration.abs() < 1e-6, "{r:?}");
     }
-    assert!(sim.bogie_vehicle_response(2).is_none());
+    assert!(sim.vehicle_response(2).is_none());
 }
 
 #[test]

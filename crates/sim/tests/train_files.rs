@@ -80,16 +80,16 @@ fn a_quarter_car_train_drives_the_coupled_model() {
 
 #[test]
 fn trains_the_coupled_model_cannot_run_yet_are_refused_with_the_remedy() {
-    let articulated = "[train]\nspeed = 50.0\n[[train.vehicles]]\ntype = \"articulated\"\nbodies = 2\nlength = 45.0\nbody_mass = 28000.0\nbody_pitch_inertia = 1.5e6\nbogie_spacing = 18.7\nbogie_mass = 3000.0\nbogie_pitch_inertia = 2000.0\nwheelbase = 3.0\nwheelset_mass = 2000.0\nprimary_stiffness = 2.4e6\nsecondary_stiffness = 8e5\n";
+    let forces = "[train]\nspeed = 50.0\n[[train.vehicles]]\ntype = \"moving_forces\"\nlength = 20.0\naxle_positions = [0.0, 3.0]\naxle_loads = [1.0e5, 1.0e5]\n";
     let e = load(
-        &format!("kind = \"vehicle_bridge\"\n{BRIDGE}{articulated}"),
+        &format!("kind = \"vehicle_bridge\"\n{BRIDGE}{forces}"),
         Path::new("."),
     )
     .err()
     .unwrap()
     .to_string();
     assert!(
-        e.contains("articulated") && e.contains("moving_load"),
+        e.contains("moving_forces") && e.contains("moving_load"),
         "{e}"
     );
 }

@@ -66,7 +66,7 @@ pub struct VehicleBridgeConfig {
     /// The scenario of [`crate::vehicle_bridge::Simulation::new`].
     pub scenario: Scenario,
     /// Bogie vehicles on the scenario's wheels ([`crate::vehicle_bridge::Simulation::with_vehicles`]).
-    pub vehicles: Vec<crate::vehicle_bridge::BogieLayout>,
+    pub vehicles: Vec<crate::vehicle_bridge::VehicleLayout>,
     /// The train of a `[train]` scenario (for the report).
     pub train: Option<crate::train::Train>,
     /// Longitudinal friction (`[traction]`), if given.
@@ -296,11 +296,19 @@ fn vehicle_wheels(vehicle: &VehicleSpec) -> Result<Vec<WheelSpec>, ConfigError> 
 /// `position` − (its offset behind the train's leading axle); a quarter car or sprung mass is
 /// one wheel with its body, a bogie vehicle four bare wheelsets carrying its body and bogies
 /// (their `static_load` the suspended share, for the contact's static state and the checks).
-/// Articulated trains and moving forces need dynamics the coupled model does not have yet.
+/// An articulated train owns one bare wheelset per axle, like a bogie vehicle. Moving forces
+/// need dynamics the coupled model does not have.
 #[allow(clippy::type_complexity)]
 fn train_wheels(
     table: &super::train::TrainTable,
-) -> Result<(Vec<WheelSpec>, f64, Vec<crate::vehicle_bridge::BogieLayout>), ConfigError> {
+) -> Result<
+    (
+        Vec<WheelSpec>,
+        f64,
+        Vec<crate::vehicle_bridge::VehicleLayout>,
+    ),
+    ConfigError,
+> {
     use crate::train::VehicleSpec as V;
     let train = super::train::build(table, "train")?;
     let speed = table
@@ -342,8 +350,8 @@ fn train_wheels(
                 m.length
             }
             V::BogieVehicle(b) => {
-                layouts.push(crate::vehicle_bridge::BogieLayout {
-                    vehicle: *b,
+                layouts.push(crate::vehicle_bridge::VehicleLayout {
+                    vehicle: crate::vehicle_bridge::MultibodyVehicle::Bogie(*b),
                     first_wheel: wheels.len(),
                 });
                 let suspended = (0.25 * b.body_mass + 0.5 * b.bogie_mass) * g;
@@ -386,8 +394,30 @@ fn train_wheels(
                 }
                 b.length
             }
+            V::Articulated(a) => {
+                articulated_checks(i, a)?;
+                layouts.push(crate::vehicle_bridge::VehicleLayout {
+                    vehicle: crate::vehicle_bridge::MultibodyVehicle::Articulated(*a),
+                    first_wheel: wheels.len(),
+                });
+                // Each wheelset carries its bogie's suspended share (Train::axles).
+                let alone = crate::train::Train {
+                    name: String::new(),
+                    vehicles: vec![V::Articulated(*a)],
+                };
+                let axles = alone.axles(g).map_err(|e| invalid!("{e}"))?;
+                for (x, load) in axles.iter().map(|axle| (axle.offset, axle.load)) {
+                    wheels.push(WheelSpec {
+                        position: position - offset - x,
+                        wheel_mass: a.wheelset_mass,
+                        static_load: load - a.wheelset_mass * g,
+                        ..WheelSpec::default()
+                    });
+                }
+                a.length
+            }
             other => bail!(
-                "train vehicle {i}: type = \"{}\" is not yet available in vehicle_bridge (the coupled model has quarter_car, sprung_mass and bogie_vehicle vehicles; use kind = \"moving_load\" or \"sweep\" for this train as moving forces)",
+                "train vehicle {i}: type = \"{}\" is not yet available in vehicle_bridge (the coupled model has quarter_car, sprung_mass, bogie_vehicle and articulated vehicles; use kind = \"moving_load\" or \"sweep\" for this train as moving forces)",
                 other.type_name()
             ),
         };
@@ -396,6 +426,48 @@ fn train_wheels(
     checks::count("the wheels of [train]", wheels.len(), 1, checks::MAX_WHEELS)?;
     Ok((wheels, speed, layouts))
 }
+
+/// The coupled model's requirements on an articulated train: positive masses, inertias and
+/// stiffnesses, at most [`MAX_ARTICULATED_BODIES`] bodies (one dense block of the step
+/// matrix), and a suspension that holds the bodies (static sag ≤ 10 m).
+fn articulated_checks(i: usize, a: &crate::train::Articulated) -> Result<(), ConfigError> {
+    if a.bodies > MAX_ARTICULATED_BODIES {
+        bail!(
+            "train vehicle {i}: `bodies` = {}: an articulated train in vehicle_bridge has 1 … {MAX_ARTICULATED_BODIES} bodies (split a longer rake into several articulated vehicles)",
+            a.bodies
+        );
+    }
+    for (key, value) in [
+        ("primary_stiffness", a.primary_stiffness),
+        ("secondary_stiffness", a.secondary_stiffness),
+        ("wheelset_mass", a.wheelset_mass),
+        ("bogie_mass", a.bogie_mass),
+        ("body_pitch_inertia", a.body_pitch_inertia),
+        ("bogie_pitch_inertia", a.bogie_pitch_inertia),
+    ] {
+        if value.is_nan() || value <= 0.0 {
+            bail!(
+                "train vehicle {i}: `{key}` = {value}: an articulated train in vehicle_bridge needs it positive"
+            );
+        }
+    }
+    // An inner bogie's static sag on both stages (a whole body on two secondary springs).
+    let g = GRAVITY;
+    let sag = 0.5 * a.body_mass * g / a.secondary_stiffness
+        + 0.5 * (a.body_mass + a.bogie_mass) * g / a.primary_stiffness;
+    if sag > crate::vehicle_bridge::MAX_STATIC_SAG {
+        bail!(
+            "train vehicle {i}: `primary_stiffness` = {}, `secondary_stiffness` = {}: too soft, the bodies would sag {sag:.3e} m under their weight (at most 10 m)",
+            a.primary_stiffness,
+            a.secondary_stiffness
+        );
+    }
+    Ok(())
+}
+
+/// Most bodies of one articulated vehicle in the coupled model (its 6n + 4 DOFs form one
+/// dense block of the step matrix, at most `linalg::MAX_DENSE_BLOCK` = 256).
+pub const MAX_ARTICULATED_BODIES: usize = 42;
 
 /// Validates a parsed scenario file.
 pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError> {

@@ -20,8 +20,6 @@
 //! bogie pitch: ω² = 2k₁b²/J_b (twice)
 //! ```
 
-use faer::Mat;
-
 use super::BogieVehicle;
 
 /// Number of DOFs of a bogie vehicle.
@@ -29,16 +27,8 @@ pub const DOFS: usize = 10;
 /// Index of the first wheelset DOF.
 pub const FIRST_WHEEL: usize = 6;
 
-/// Mass (diagonal), stiffness and damping matrices of the contact-free vehicle.
-#[derive(Debug, Clone)]
-pub struct VehicleMatrices {
-    /// Diagonal of M: m_c, J_c, m_b, J_b, m_b, J_b, m_w × 4.
-    pub mass: Vec<f64>,
-    /// K (10 × 10, symmetric).
-    pub stiffness: Mat<f64>,
-    /// C (10 × 10, symmetric).
-    pub damping: Mat<f64>,
-}
+use super::multibody::SpringAssembler;
+pub use super::multibody::VehicleMatrices;
 
 /// The natural frequencies \[Hz\] of a bogie vehicle on a rigid track (wheelsets fixed).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -60,16 +50,8 @@ impl BogieVehicle {
     pub fn matrices(&self) -> VehicleMatrices {
         let a = 0.5 * self.bogie_spacing;
         let b = 0.5 * self.wheelbase;
-        let mut stiffness = Mat::<f64>::zeros(DOFS, DOFS);
-        let mut damping = Mat::<f64>::zeros(DOFS, DOFS);
-        let mut add = |g: &[(usize, f64)], k: f64, c: f64| {
-            for &(i, gi) in g {
-                for &(j, gj) in g {
-                    stiffness[(i, j)] += k * gi * gj;
-                    damping[(i, j)] += c * gi * gj;
-                }
-            }
-        };
+        let mut springs = SpringAssembler::new(DOFS);
+        let mut add = |g: &[(usize, f64)], k: f64, c: f64| springs.add(g, k, c);
         for (i, s) in [(0usize, 1.0), (1, -1.0)] {
             let (z, theta) = (2 + 2 * i, 3 + 2 * i);
             add(
@@ -86,12 +68,14 @@ impl BogieVehicle {
                 );
             }
         }
+        let (stiffness, damping) = springs.finish();
         let (mb, jb, mw) = (
             self.bogie_mass,
             self.bogie_pitch_inertia,
             self.wheelset_mass,
         );
         VehicleMatrices {
+            own_dofs: FIRST_WHEEL,
             mass: vec![
                 self.body_mass,
                 self.body_pitch_inertia,
@@ -147,7 +131,7 @@ impl BogieVehicle {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use faer::Side;
+    use faer::{Mat, Side};
 
     /// The Manchester benchmark car (references.md §T4), 25 m long.
     fn manchester() -> BogieVehicle {

@@ -98,7 +98,7 @@ impl Simulation {
             sample.wheel_acceleration = a[iw];
             // A wheelset of a multibody vehicle reports its car body.
             let body = self.wheel_vehicle[k]
-                .map(|v| self.vehicles[v].body())
+                .map(|v| self.vehicles[v].body_over(k - self.vehicles[v].first_wheel))
                 .or(self.body_dof[k]);
             sample.body_displacement = body.map_or(q[iw], |ib| q[ib]);
             sample.body_acceleration = body.map_or(0.0, |ib| a[ib]);

@@ -61,50 +61,41 @@ impl StructuralSystem for Structure {
 }
 
 /// The static body and bogie displacements of a vehicle with its wheels at their start
-/// positions: K_ff q_f = g_f − K_fw z_w (6 × 6, Gaussian elimination with partial pivoting).
+/// positions: K_ff q_f = g_f − K_fw z_w (own DOFs; faer's partial-pivoting LU, `DenseLu`).
 fn static_vehicle(
     v: &super::vehicles::VehicleDofs,
     stiffness: &Mat<f64>,
     gravity_load: &[f64],
     q: &mut [f64],
 ) -> Result<(), VehicleBridgeError> {
-    const F: usize = crate::train::bogie_vehicle::FIRST_WHEEL;
     let own = v.own();
-    let mut a = [[0.0f64; F + 1]; F];
-    for (r, &i) in own.iter().enumerate() {
-        for (c, &j) in own.iter().enumerate() {
-            a[r][c] = stiffness[(i, j)];
-        }
-        a[r][F] = gravity_load[i]
-            - v.dofs[F..]
-                .iter()
-                .map(|&w| stiffness[(i, w)] * q[w])
-                .sum::<f64>();
-    }
-    for col in 0..F {
-        let pivot = (col..F)
-            .max_by(|&x, &y| a[x][col].abs().total_cmp(&a[y][col].abs()))
-            .unwrap_or(col);
-        a.swap(col, pivot);
-        let p = a[col][col];
-        if !(p.is_finite() && p.abs() > 0.0) {
-            return Err(super::error::invalid(
-                "train.vehicles",
-                v.first_wheel as f64,
-                "a bogie vehicle's suspension must hold its body and bogies (positive stiffnesses)",
-            ));
-        }
-        for r in 0..F {
-            if r != col {
-                let f = a[r][col] / p;
-                for c in col..=F {
-                    a[r][c] -= f * a[col][c];
-                }
-            }
-        }
+    let f = own.len();
+    let wheels = &v.dofs[f..];
+    let kff = Mat::<f64>::from_fn(f, f, |r, c| stiffness[(own[r], own[c])]);
+    let mut rhs: Vec<f64> = own
+        .iter()
+        .map(|&i| {
+            gravity_load[i]
+                - wheels
+                    .iter()
+                    .map(|&w| stiffness[(i, w)] * q[w])
+                    .sum::<f64>()
+        })
+        .collect();
+    let mut lu = integrate::DenseLu::new(f);
+    let held = lu.factorize(kff.as_ref(), 0.0).is_ok() && {
+        lu.solve_in_place(&mut rhs);
+        rhs.iter().all(|x| x.is_finite())
+    };
+    if !held {
+        return Err(super::error::invalid(
+            "train.vehicles",
+            v.first_wheel as f64,
+            "a multibody vehicle's suspension must hold its bodies and bogies (positive stiffnesses)",
+        ));
     }
     for (r, &i) in own.iter().enumerate() {
-        q[i] = a[r][F] / a[r][r];
+        q[i] = rhs[r];
     }
     Ok(())
 }
@@ -121,7 +112,7 @@ impl Simulation {
     /// body and bogies.
     pub fn with_vehicles(
         mut scenario: Scenario,
-        layouts: Vec<super::BogieLayout>,
+        layouts: Vec<super::VehicleLayout>,
     ) -> Result<Self, VehicleBridgeError> {
         let m = scenario.bridge.n_modes();
         let length = scenario.bridge.length();
@@ -130,20 +121,21 @@ impl Simulation {
         let mut wheel_vehicle: Vec<Option<usize>> = vec![None; nw0];
         for (v, layout) in layouts.iter().enumerate() {
             let k0 = layout.first_wheel;
-            if k0 + 4 > nw0 {
+            let count = layout.vehicle.wheelsets();
+            if k0 + count > nw0 {
                 return Err(super::error::invalid(
                     "train.vehicles",
                     k0 as f64,
-                    "a bogie vehicle needs four wheels of the scenario",
+                    "a multibody vehicle needs one wheel of the scenario per wheelset",
                 ));
             }
-            for k in k0..k0 + 4 {
+            for k in k0..k0 + count {
                 let w = &scenario.wheels[k];
                 if wheel_vehicle[k].is_some() || w.body_mass != 0.0 || w.wheel_mass <= 0.0 {
                     return Err(super::error::invalid(
                         "train.vehicles",
                         k as f64,
-                        "the wheels of a bogie vehicle are its own bare wheelsets (wheel_mass > 0, no body)",
+                        "the wheels of a multibody vehicle are its own bare wheelsets (wheel_mass > 0, no body)",
                     ));
                 }
                 wheel_vehicle[k] = Some(v);
@@ -153,7 +145,7 @@ impl Simulation {
             return Err(super::error::invalid_text(
                 "integrator.method",
                 "radau5",
-                "not yet available with bogie vehicles; use generalized_alpha, hht or newmark",
+                "not yet available with bogie or articulated vehicles; use generalized_alpha, hht or newmark",
             ));
         }
 
@@ -174,23 +166,16 @@ impl Simulation {
         // Body and bogies of each multibody vehicle (module `vehicles`).
         let mut vehicles = Vec::with_capacity(layouts.len());
         for layout in &layouts {
-            let mut dofs = [0usize; crate::train::bogie_vehicle::DOFS];
-            for (i, d) in dofs
-                .iter_mut()
-                .enumerate()
-                .take(crate::train::bogie_vehicle::FIRST_WHEEL)
-            {
-                *d = n + i;
-            }
-            n += crate::train::bogie_vehicle::FIRST_WHEEL;
-            for j in 0..4 {
-                dofs[crate::train::bogie_vehicle::FIRST_WHEEL + j] =
-                    wheel_dof[layout.first_wheel + j];
-            }
+            let matrices = layout.vehicle.matrices();
+            let own = matrices.own_dofs;
+            let mut dofs: Vec<usize> = (n..n + own).collect();
+            n += own;
+            dofs.extend((0..matrices.wheelsets()).map(|j| wheel_dof[layout.first_wheel + j]));
             vehicles.push(super::vehicles::VehicleDofs {
                 first_wheel: layout.first_wheel,
+                bodies: layout.vehicle.bodies(),
                 dofs,
-                matrices: layout.vehicle.matrices(),
+                matrices,
             });
         }
         let omegas = scenario.bridge.circular_frequencies().to_vec();
@@ -241,7 +226,7 @@ impl Simulation {
                     damping[(i, j)] += vm.damping[(r, c)];
                 }
             }
-            // Own DOFs: z_c, θ_c, z_1, θ_1, z_2, θ_2 (weights on the z DOFs).
+            // Own DOFs: (z, θ) of each body and bogie (weights on the z DOFs).
             for (r, &i) in v.own().iter().enumerate() {
                 mass[(i, i)] = vm.mass[r];
                 gravity_load[i] = if r % 2 == 0 { vm.mass[r] * g } else { 0.0 };
@@ -420,7 +405,7 @@ impl Simulation {
                 position: x,
                 wheel_displacement: zw,
                 body_displacement: self.wheel_vehicle[k]
-                    .map(|v| self.vehicles[v].body())
+                    .map(|v| self.vehicles[v].body_over(k - self.vehicles[v].first_wheel))
                     .or(self.body_dof[k])
                     .map_or(zw, |ib| q[ib]),
                 body_acceleration: 0.0,

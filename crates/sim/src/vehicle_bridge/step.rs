@@ -108,17 +108,17 @@ impl Simulation {
             };
             pushed.map_err(|_| singular(iw, "wheel"))?;
         }
-        let mut block =
-            [0.0; crate::train::bogie_vehicle::DOFS * crate::train::bogie_vehicle::DOFS];
+        let mut block = Vec::new();
         for v in &self.vehicles {
             let d = v.dofs.len();
+            block.resize(d * d, 0.0);
             for (r, &i) in v.dofs.iter().enumerate() {
                 for (c, &j) in v.dofs.iter().enumerate() {
                     block[r * d + c] = entry(i, j);
                 }
             }
             a.push_dense(&v.dofs, &block[..d * d])
-                .map_err(|_| singular(v.body(), "bogie-vehicle"))?;
+                .map_err(|_| singular(v.dofs[0], "multibody-vehicle"))?;
         }
         self.a_coefficients = key;
         Ok(())
