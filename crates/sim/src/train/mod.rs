@@ -7,10 +7,12 @@
 //! SI units.
 //!
 //! * [`hslm`]: HSLM-A1 … A10 of EN 1991-2 Annex E;
+//! * [`presets`]: real trains with published parameters (by name);
 //! * [`bogie_vehicle`]: the bogie vehicle's matrices and rigid-track natural frequencies.
 
 pub mod bogie_vehicle;
 pub mod hslm;
+pub mod presets;
 pub mod vehicle;
 
 pub use vehicle::{Articulated, BogieVehicle, MovingForces, QuarterCar, SprungMass, VehicleSpec};
