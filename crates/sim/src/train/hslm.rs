@@ -18,6 +18,10 @@
 //! Axles: 8 + 2 (N + 3) (A1: N = 18, 50 axles; A10: N = 11, 36 axles). First axle to last:
 //! 37.525 + (N + 2) D \[m\] (A1: 397.525 m). The regular coach length D is what makes the
 //! train resonate a bridge of first frequency n₀ at v_i = n₀ D / i.
+//!
+//! The geometry equals the axle lists published with CALDINTAV for all ten trains, and the
+//! power-car and end-coach geometry that of TrainLoad's HSLM-A builder (references.md §T1;
+//! unit test `the_geometry_equals_the_published_caldintav_trains`).
 
 use super::{MovingForces, Train, VehicleSpec};
 
