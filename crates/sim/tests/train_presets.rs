@@ -329,3 +329,22 @@ fn sweep_names_take_the_presets_as_their_static_axle_loads() {
         "{e}"
     );
 }
+
+#[test]
+fn the_train_example_file_is_the_manchester_preset() {
+    // examples/train_bridge.toml spells the Manchester car out key by key; the preset is the
+    // same vehicle (an independent transcription of §T4).
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../examples/train_bridge.toml"
+    ))
+    .unwrap();
+    let table: toml::Table = text.parse().unwrap();
+    let train_table: sim::config::train::TrainTable = table["train"].clone().try_into().unwrap();
+    let explicit = sim::config::train::build(&train_table, "train").unwrap();
+    let preset = preset("Manchester");
+    assert_eq!(explicit.vehicles.len(), 2);
+    for v in &explicit.vehicles {
+        assert_eq!(v, &preset.vehicles[0]);
+    }
+}
