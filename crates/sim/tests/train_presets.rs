@@ -348,3 +348,45 @@ fn the_train_example_file_is_the_manchester_preset() {
         assert_eq!(v, &preset.vehicles[0]);
     }
 }
+
+#[test]
+fn the_ave_s103_preset_stands_on_its_statics_in_the_coupled_model() {
+    // The eight-car preset on the approach track of a vehicle_bridge run (Hertz contact): every
+    // wheelset carries its car's statics, 15 500 kg × g (cars 1–3, 6–8) or 13 850 kg × g
+    // (cars 4, 5), and stays there (the static start balances every DOF).
+    let text = "kind = \"vehicle_bridge\"\n[bridge]\nlength = 25.0\nEI = 8.323e9\nmass_per_length = 2303.0\nsupports = \"simply_supported\"\nmodes = 8\ndamping_ratio = 0.02\n[train]\nspeed = 10.0\nposition = -250.0\n[[train.vehicles]]\npreset = \"AVE-S103\"\n[contact]\nmodel = \"hertz\"\n[integrator]\nmethod = \"generalized_alpha\"\ndt = 1e-3\nduration = 0.1\n";
+    let mut sim = match sim::config::load(
+        text,
+        std::path::Path::new("."),
+        &sim::config::LoadOptions::default(),
+    ) {
+        Ok(sim::config::ScenarioConfig::VehicleBridge(v)) => {
+            sim::vehicle_bridge::Simulation::with_vehicles(v.scenario, v.vehicles).unwrap()
+        }
+        Ok(_) => panic!("not vehicle_bridge"),
+        Err(e) => panic!("{e}"),
+    };
+    assert_eq!(sim.wheels().len(), 32);
+    assert_eq!(sim.bogie_vehicle_count(), 8);
+    let expected = |i: usize| {
+        if (12..20).contains(&i) {
+            13_850.0 * G
+        } else {
+            15_500.0 * G
+        }
+    };
+    for _ in 0..50 {
+        sim.step().unwrap();
+    }
+    for (i, s) in sim.wheels().iter().enumerate() {
+        assert!(
+            (s.contact.force / expected(i) - 1.0).abs() < 1e-6,
+            "wheel {i}: {}",
+            s.contact.force
+        );
+    }
+    for v in 0..8 {
+        let r = sim.bogie_vehicle_response(v).unwrap();
+        assert!(r.body_acceleration.abs() < 1e-6, "{r:?}");
+    }
+}
