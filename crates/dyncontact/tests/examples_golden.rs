@@ -90,7 +90,7 @@ fn every_example_has_a_golden_test() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .filter(|n| n.ends_with(".toml"))
         .collect();
-    assert_eq!(files.len(), 19, "{files:?}");
+    assert_eq!(files.len(), 20, "{files:?}");
     let missing: Vec<&String> = files
         .iter()
         .filter(|f| !this.contains(&format!("\"{f}\"")))
@@ -307,6 +307,24 @@ fn train_example_matches_the_docs() {
             q("vehicles/1/max_body_acceleration", 0.441, 0.001),
             q("vehicles/0/max_bogie_acceleration", 2.112, 0.001),
             q("comfort/max_body_acceleration", 0.441, 0.001),
+        ],
+        "docs/trains.md",
+    );
+}
+
+/// docs/trains.md: the AVE S-103 preset as moving forces over a 25 m span.
+#[test]
+fn preset_train_example_matches_the_docs() {
+    check(
+        "ice3_bridge.toml",
+        &["run"],
+        &[
+            n("axles", 32.0),
+            q("exit_time", 2.6196, 0.0001),
+            q("static_midspan_deflection", 20.720e-3, 0.001e-3),
+            q("max_midspan_deflection", 26.801e-3, 0.001e-3),
+            q("dynamic_amplification", 1.2935, 0.0001),
+            q("max_midspan_acceleration", 9.044, 0.001),
         ],
         "docs/trains.md",
     );

@@ -8,7 +8,7 @@
 //! damping = "eurocode"     # with `type`: EN 1991-2 Table 6.6 + Δζ (eq. 6.13); or damping_ratio
 //! type = "prestressed_concrete"
 //! [trains]
-//! names = ["HSLM-A"]       # HSLM-A (all ten), HSLM-A1 … HSLM-A10
+//! names = ["HSLM-A"]       # HSLM-A (all ten), HSLM-A1 … HSLM-A10, real trains (AVE-S103, …)
 //! model = "moving_forces"
 //! [speeds]                 # m/s: from/to/step, or list
 //! from = 38.8889
@@ -27,7 +27,7 @@ use super::bridge::{Bridge, BridgeSpec};
 use super::checks::{self, ranges};
 use crate::sweep::SweepSpec;
 use crate::sweep::eurocode::{self, BridgeType, Track};
-use crate::train::{MovingForces, Train, VehicleSpec, hslm};
+use crate::train::{MovingForces, Train, VehicleSpec, hslm, presets};
 
 /// Steps per period of the highest retained mode (default time step 1/(40 f_max)): the sampled
 /// peak of an oscillation is then low by at most (π/40)²/2 = 0.31 %.
@@ -66,7 +66,8 @@ pub struct SweepFile {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct TrainsSpec {
-    /// Preset names: `HSLM-A` (all ten), `HSLM-A1` … `HSLM-A10`.
+    /// Preset names: `HSLM-A` (all ten), `HSLM-A1` … `HSLM-A10` and the real trains of
+    /// [`crate::train::presets`] (their static axle loads).
     #[serde(default)]
     pub names: Vec<String>,
     /// Train files (any TOML file with a `[train]` table, paths relative to the sweep file):
@@ -298,11 +299,12 @@ fn trains(spec: &TrainsSpec, base: &std::path::Path) -> Result<Vec<Train>, Confi
     for name in &spec.names {
         if name.trim().eq_ignore_ascii_case("HSLM-A") {
             trains.extend(hslm::all());
-        } else if let Some(t) = hslm::by_name(name) {
+        } else if let Some(t) = presets::any_by_name(name) {
             trains.push(t);
         } else {
             bail!(
-                "[trains] `names` contains \"{name}\": known trains are HSLM-A (all ten) and HSLM-A1 … HSLM-A10 (or give the axles in [[trains.train]])"
+                "[trains] `names` contains \"{name}\": known trains are HSLM-A (all ten), {} (or give the axles in [[trains.train]], or a train file in `files`)",
+                presets::known()
             );
         }
     }

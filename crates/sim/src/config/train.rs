@@ -7,7 +7,7 @@
 //! name = "four cars"
 //! speed = 80.0                # [m/s] (moving_load, vehicle_bridge)
 //! position = 0.0              # x of the leading axle at t = 0 [m] (vehicle_bridge)
-//! [[train.vehicles]]          # in running order; or preset = "HSLM-A1" (a whole train)
+//! [[train.vehicles]]          # in running order; or preset = "AVE-S103", "HSLM-A1", … (a whole train)
 //! type = "bogie_vehicle"      # moving_forces | quarter_car | sprung_mass | bogie_vehicle | articulated
 //! count = 4                   # identical vehicles in a row
 //! length = 25.0               # leading axle to the next vehicle's leading axle [m]
@@ -20,7 +20,7 @@ use serde::Deserialize;
 use super::ConfigError;
 use super::checks::{self, ranges};
 use crate::train::{
-    Articulated, BogieVehicle, MovingForces, QuarterCar, SprungMass, Train, VehicleSpec, hslm,
+    Articulated, BogieVehicle, MovingForces, QuarterCar, SprungMass, Train, VehicleSpec, presets,
 };
 
 /// Largest number of vehicles of a train (after `count`).
@@ -124,9 +124,14 @@ fn vehicle(v: &VehicleTable, key: &str) -> Result<Vec<VehicleSpec>, ConfigError>
         {
             bail!("{key}: `preset` = \"{name}\" takes no vehicle parameters (only `count`)");
         }
-        return hslm::by_name(name).map(|t| t.vehicles).ok_or_else(|| {
-            invalid!("{key}.preset = \"{name}\": known presets are HSLM-A1 … HSLM-A10")
-        });
+        return presets::any_by_name(name)
+            .map(|t| t.vehicles)
+            .ok_or_else(|| {
+                invalid!(
+                    "{key}.preset = \"{name}\": known presets are {}",
+                    presets::known()
+                )
+            });
     }
     let Some(kind) = v.kind.as_deref() else {
         bail!("{key}: give `type` ({VEHICLE_TYPES}) or `preset`");

@@ -18,6 +18,10 @@
 //! Axles: 8 + 2 (N + 3) (A1: N = 18, 50 axles; A10: N = 11, 36 axles). First axle to last:
 //! 37.525 + (N + 2) D \[m\] (A1: 397.525 m). The regular coach length D is what makes the
 //! train resonate a bridge of first frequency n₀ at v_i = n₀ D / i.
+//!
+//! The geometry equals the axle lists published with CALDINTAV for all ten trains, and the
+//! power-car and end-coach geometry that of TrainLoad's HSLM-A builder (references.md §T1;
+//! unit test `the_geometry_equals_the_published_caldintav_trains`).
 
 use super::{MovingForces, Train, VehicleSpec};
 
@@ -145,6 +149,66 @@ mod tests {
         assert!((by_name("A1").unwrap().length() - 397.525).abs() < 1e-9);
         assert!(by_name("HSLM-A11").is_none() && by_name("HSLM-B1").is_none());
         assert_eq!(all().len(), 10);
+    }
+
+    /// HSLM-A1 and A2 axle positions \[m\] as published in CALDINTAV's train files
+    /// `caldintav/trains/a01.def`, `a02.def` (references.md §T1): an independent statement of
+    /// the power-car and end-coach geometry (A2 has d = 3.5 m, so the d-dependent end-coach gap
+    /// D − 1.5 d − 3.525/2 is exercised).
+    const CALDINTAV_A1: [f64; 50] = [
+        0.0, 3.0, 14.0, 17.0, 20.525, 22.525, 35.7625, 37.7625, 53.7625, 55.7625, 71.7625, 73.7625,
+        89.7625, 91.7625, 107.7625, 109.7625, 125.7625, 127.7625, 143.7625, 145.7625, 161.7625,
+        163.7625, 179.7625, 181.7625, 197.7625, 199.7625, 215.7625, 217.7625, 233.7625, 235.7625,
+        251.7625, 253.7625, 269.7625, 271.7625, 287.7625, 289.7625, 305.7625, 307.7625, 323.7625,
+        325.7625, 341.7625, 343.7625, 359.7625, 361.7625, 375.0, 377.0, 380.525, 383.525, 394.525,
+        397.525,
+    ];
+    const CALDINTAV_A2: [f64; 48] = [
+        0.0, 3.0, 14.0, 17.0, 20.525, 24.025, 36.0125, 39.5125, 55.0125, 58.5125, 74.0125, 77.5125,
+        93.0125, 96.5125, 112.0125, 115.5125, 131.0125, 134.5125, 150.0125, 153.5125, 169.0125,
+        172.5125, 188.0125, 191.5125, 207.0125, 210.5125, 226.0125, 229.5125, 245.0125, 248.5125,
+        264.0125, 267.5125, 283.0125, 286.5125, 302.0125, 305.5125, 321.0125, 324.5125, 340.0125,
+        343.5125, 359.0125, 362.5125, 374.5, 378.0, 381.525, 384.525, 395.525, 398.525,
+    ];
+    /// Every CALDINTAV file `a01.def` … `a10.def`: (axles, 7th axle = first axle of the first
+    /// articulation bogie \[m\], last axle \[m\], axle load \[N\]).
+    const CALDINTAV_SUMMARY: [(usize, f64, f64, f64); 10] = [
+        (50, 35.7625, 397.525, 170_000.0),
+        (48, 36.0125, 398.525, 200_000.0),
+        (46, 37.7625, 397.525, 180_000.0),
+        (44, 38.2625, 394.525, 190_000.0),
+        (42, 39.7625, 389.525, 170_000.0),
+        (40, 40.7625, 382.525, 180_000.0),
+        (40, 41.7625, 397.525, 190_000.0),
+        (38, 42.5125, 387.525, 190_000.0),
+        (36, 43.7625, 375.525, 210_000.0),
+        (36, 44.7625, 388.525, 210_000.0),
+    ];
+
+    #[test]
+    fn the_geometry_equals_the_published_caldintav_trains() {
+        for (published, number) in [(&CALDINTAV_A1[..], 1), (&CALDINTAV_A2[..], 2)] {
+            let axles = by_name(&format!("A{number}")).unwrap().axles(9.81).unwrap();
+            assert_eq!(axles.len(), published.len(), "A{number}");
+            for (a, &x) in axles.iter().zip(published) {
+                // The files print 4 decimals; every published value is exact in them.
+                assert!(
+                    (a.offset - x).abs() < 1e-9,
+                    "A{number}: {} vs {x}",
+                    a.offset
+                );
+            }
+        }
+        for (i, &(count, seventh, last, load)) in CALDINTAV_SUMMARY.iter().enumerate() {
+            let axles = by_name(&format!("A{}", i + 1))
+                .unwrap()
+                .axles(9.81)
+                .unwrap();
+            assert_eq!(axles.len(), count, "A{}", i + 1);
+            assert!((axles[6].offset - seventh).abs() < 1e-9, "A{}", i + 1);
+            assert!((axles[count - 1].offset - last).abs() < 1e-9, "A{}", i + 1);
+            assert!(axles.iter().all(|a| a.load == load), "A{}", i + 1);
+        }
     }
 
     #[test]

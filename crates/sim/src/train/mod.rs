@@ -7,6 +7,7 @@
 //! SI units.
 //!
 //! * [`hslm`]: HSLM-A1 … A10 of EN 1991-2 Annex E;
+//! * [`presets`]: real trains with published parameters (by name);
 //! * [`bogie_vehicle`]: the bogie vehicle's matrices and rigid-track natural frequencies;
 //! * [`articulated`]: the articulated train's matrices (bodies sharing bogies);
 //! * [`multibody`]: what both share (their matrices, spring–damper assembly).
@@ -15,6 +16,7 @@ pub mod articulated;
 pub mod bogie_vehicle;
 pub mod hslm;
 pub mod multibody;
+pub mod presets;
 pub mod vehicle;
 
 pub use vehicle::{Articulated, BogieVehicle, MovingForces, QuarterCar, SprungMass, VehicleSpec};
