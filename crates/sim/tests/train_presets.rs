@@ -367,7 +367,7 @@ fn the_ave_s103_preset_stands_on_its_statics_in_the_coupled_model() {
         Err(e) => panic!("{e}"),
     };
     assert_eq!(sim.wheels().len(), 32);
-    assert_eq!(sim.bogie_vehicle_count(), 8);
+    assert_eq!(sim.multibody_vehicle_count(), 8);
     let expected = |i: usize| {
         if (12..20).contains(&i) {
             13_850.0 * G
@@ -386,7 +386,7 @@ fn the_ave_s103_preset_stands_on_its_statics_in_the_coupled_model() {
         );
     }
     for v in 0..8 {
-        let r = sim.bogie_vehicle_response(v).unwrap();
+        let r = sim.vehicle_response(v).unwrap();
         assert!(r.body_acceleration.abs() < 1e-6, "{r:?}");
     }
 }
