@@ -390,3 +390,60 @@ fn the_ave_s103_preset_stands_on_its_statics_in_the_coupled_model() {
         assert!(r.body_acceleration.abs() < 1e-6, "{r:?}");
     }
 }
+
+/// The lowest body-bounce and body-pitch frequencies \[Hz\] of an articulated chain on a
+/// rigid track: QZ generalized eigenvalues of (K, M) over the body and bogie DOFs (faer), the
+/// modes identified by the share of their kinetic energy in the bodies' z (even DOFs below
+/// 2n) or θ (odd DOFs below 2n) coordinates (> 1/2).
+fn chain_body_frequencies(a: &sim::train::Articulated) -> (f64, f64) {
+    let m = a.matrices();
+    let n = m.own_dofs;
+    let k = Mat::<f64>::from_fn(n, n, |i, j| m.stiffness[(i, j)]);
+    let mass = Mat::<f64>::from_fn(n, n, |i, j| if i == j { m.mass[i] } else { 0.0 });
+    let evd = GeneralizedEigen::new_from_real(k.as_ref(), mass.as_ref()).unwrap();
+    let (s_a, s_b, u) = (evd.S_a(), evd.S_b(), evd.U());
+    let (mut bounce, mut pitch) = (f64::INFINITY, f64::INFINITY);
+    for j in 0..n {
+        let omega2 = (s_a[j] / s_b[j]).re;
+        let energy: Vec<f64> = (0..n).map(|i| u[(i, j)].norm_sqr() * m.mass[i]).collect();
+        let total: f64 = energy.iter().sum();
+        let body_z: f64 = (0..a.bodies).map(|b| energy[2 * b]).sum();
+        let body_theta: f64 = (0..a.bodies).map(|b| energy[2 * b + 1]).sum();
+        let f = omega2.sqrt() / std::f64::consts::TAU;
+        if body_z / total > 0.5 {
+            bounce = bounce.min(f);
+        }
+        if body_theta / total > 0.5 {
+            pitch = pitch.min(f);
+        }
+    }
+    (bounce, pitch)
+}
+
+#[test]
+fn the_articulated_preset_has_its_body_frequencies_in_the_docs() {
+    let t = preset("Eurostar-EC2-EC8");
+    let VehicleSpec::Articulated(a) = &t.vehicles[0] else {
+        panic!("Eurostar-EC2-EC8 is articulated");
+    };
+    let (bounce, pitch) = chain_body_frequencies(a);
+    // The symmetric eigen-solver of Articulated::rigid_track_frequencies (another algorithm:
+    // M^{-1/2} K M^{-1/2}, tridiagonal QR) has both among its frequencies, to 1e-10.
+    let all = a.rigid_track_frequencies();
+    for f in [bounce, pitch] {
+        let nearest = all
+            .iter()
+            .map(|x| (x / f - 1.0).abs())
+            .fold(f64::INFINITY, f64::min);
+        assert!(nearest < 1e-10, "{f} vs {all:?}");
+    }
+    let row = format!(
+        "| `Eurostar-EC2-EC8` | {} bodies | {bounce:.3} | {pitch:.3} |",
+        a.bodies
+    );
+    println!("{row}");
+    let docs =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/trains.md"))
+            .unwrap();
+    assert!(docs.contains(&row), "docs/trains.md lacks {row}");
+}
