@@ -141,14 +141,6 @@ impl Simulation {
                 wheel_vehicle[k] = Some(v);
             }
         }
-        if !layouts.is_empty() && matches!(scenario.integrator, Integrator::Radau5(_)) {
-            return Err(super::error::invalid_text(
-                "integrator.method",
-                "radau5",
-                "not yet available with bogie or articulated vehicles; use generalized_alpha, hht or newmark",
-            ));
-        }
-
         // DOF layout and matrices.
         let mut n = m;
         let mut wheel_dof = Vec::new();
