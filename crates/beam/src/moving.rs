@@ -230,6 +230,8 @@ struct Workspace {
     shapes: Vec<f64>,
     damping: Vec<f64>,
     inv_mass: Vec<f64>,
+    /// Sine amplitudes of a simply supported uniform span (fast shapes), else `None`.
+    sine: Option<Vec<f64>>,
     steppers: Vec<PiecewiseLinearSdof>,
 }
 
@@ -268,11 +270,16 @@ impl OutputOperator {
 
 /// Modal forces Σ_(k on span) F_k w_j(x_k(t)) · `weights_j` at time t into `out`, using `shapes`
 /// as scratch. Axles off the span contribute nothing.
+///
+/// On a simply supported uniform span (`sine`: the amplitudes A_j of w_j = A_j sin((j+1)πx/L),
+/// `passage::sine_amplitudes`) the shapes come from the recurrence
+/// sin((j+1)θ) = 2 cos θ sin(jθ) − sin((j−1)θ): one `sin_cos` per axle instead of one per mode.
 fn modal_forces<B: ModalBasis + ?Sized>(
     basis: &B,
     loads: &MovingLoads,
     t: f64,
     weights: &[f64],
+    sine: Option<&[f64]>,
     shapes: &mut [f64],
     out: &mut [f64],
 ) -> Result<(), BeamError> {
@@ -283,9 +290,21 @@ fn modal_forces<B: ModalBasis + ?Sized>(
         if !(0.0..=l).contains(&x) {
             continue;
         }
-        basis.eval_all(x, Derivative::Shape, shapes)?;
-        for (f, w) in out.iter_mut().zip(shapes.iter()) {
-            *f += axle.force * w;
+        match sine {
+            Some(amplitudes) => {
+                let (s1, c) = (std::f64::consts::PI * x / l).sin_cos();
+                let (mut prev, mut cur) = (0.0, s1);
+                for (f, a) in out.iter_mut().zip(amplitudes) {
+                    *f += axle.force * a * cur;
+                    (prev, cur) = (cur, 2.0 * c * cur - prev);
+                }
+            }
+            None => {
+                basis.eval_all(x, Derivative::Shape, shapes)?;
+                for (f, w) in out.iter_mut().zip(shapes.iter()) {
+                    *f += axle.force * w;
+                }
+            }
         }
     }
     for (f, m) in out.iter_mut().zip(weights) {
@@ -306,6 +325,7 @@ fn modal_forces_at<B: ModalBasis + ?Sized>(
         loads,
         t,
         &ws.inv_mass,
+        ws.sine.as_deref(),
         &mut ws.shapes,
         &mut ws.f_next,
     )
@@ -382,6 +402,7 @@ impl<B: ModalBasis + ?Sized> StructuralSystem for ModalSystem<'_, B> {
             self.loads,
             t,
             &self.unit_weights,
+            None,
             &mut self.shapes,
             f_ext,
         )
@@ -481,6 +502,7 @@ pub fn simulate_moving_loads_observed<B: ModalBasis + ?Sized>(
         inv_mass: (0..n)
             .map(|j| basis.modal_mass(j).map(|m| 1.0 / m))
             .collect::<Result<_, _>>()?,
+        sine: crate::passage::sine_amplitudes(basis)?,
         steppers: Vec::with_capacity(n),
     };
     let op = OutputOperator::new(basis, points)?;

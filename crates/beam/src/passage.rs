@@ -296,7 +296,9 @@ impl AxleWindow {
 
 /// A_j when every shape of `basis` is A_j sin((j+1)πx/L) (a simply supported uniform span, as
 /// [`crate::AnalyticBeam`] with `Support::SimplySupported`), checked at four points.
-fn sine_amplitudes(basis: &dyn ModalBasis) -> Result<Option<Vec<f64>>, BeamError> {
+pub(crate) fn sine_amplitudes<B: ModalBasis + ?Sized>(
+    basis: &B,
+) -> Result<Option<Vec<f64>>, BeamError> {
     let n = basis.n_modes();
     let length = basis.length();
     let mut amplitudes = vec![0.0; n];
