@@ -4,17 +4,11 @@
 //! creep_curve.png. See docs/tangential.md.
 
 use std::path::Path;
-use std::time::Instant;
 
 use anyhow::{Result, anyhow, bail};
-use halfspace::{
-    ContactError, CoupledOptions, CoupledProblem, Creepages, NormalSolver, RollingLoad,
-    TangentialMethod, TangentialOptions, TangentialSolver, TangentialStrategy, linear_forces,
-    solve_coupled, tangential_strategy,
-};
-use serde::Serialize;
+use sim::creep_curve::{self, CreepCurve, CreepVariable, CurvePoint};
 
-use crate::contact_case::{self, TangentialTask};
+use crate::contact_case;
 use crate::errors::{BadInput, bad_input};
 use crate::output::{self, RunOutput};
 use crate::plot;
@@ -55,40 +49,6 @@ pub fn parse_range(spec: &str, flag: &str) -> Result<Vec<f64>> {
         .collect())
 }
 
-/// One point of the curve (forces on body 1 \[N\], moment [N m]).
-#[derive(Debug, Serialize)]
-pub struct CurvePoint {
-    pub creepage_x: f64,
-    pub creepage_y: f64,
-    pub spin: f64,
-    pub exact_force_x: f64,
-    pub exact_force_y: f64,
-    pub exact_spin_moment: f64,
-    pub exact_adhesion_elements: usize,
-    pub exact_slip_elements: usize,
-    pub exact_sweeps: usize,
-    pub fastsim_force_x: Option<f64>,
-    pub fastsim_force_y: Option<f64>,
-    pub linear_force_x: Option<f64>,
-    pub linear_force_y: Option<f64>,
-}
-
-/// The JSON file.
-#[derive(Debug, Serialize)]
-pub struct CreepCurve {
-    /// "creepage_x", "creepage_y" or "spin".
-    pub variable: String,
-    pub mu: f64,
-    pub normal_force: f64,
-    /// Hertz semi-axes used by FASTSIM and the linear theory \[m\] (null for non-Hertzian gaps).
-    pub hertz_a: Option<f64>,
-    pub hertz_b: Option<f64>,
-    pub grid_nx: usize,
-    pub grid_ny: usize,
-    pub exact_time_s: f64,
-    pub points: Vec<CurvePoint>,
-}
-
 /// Run the subcommand.
 pub fn run(
     text: &str,
@@ -107,100 +67,14 @@ pub fn run(
     let which = chosen[0];
     let values = parse_range(sweeps[which].expect("chosen"), flags[which]).map_err(bad_input)?;
     let case = contact_case::parse(text, base).map_err(bad_input)?;
-    let mu = case
-        .mu
-        .ok_or_else(|| BadInput::error("[friction]: a creep curve needs `mu`"))?;
-    let base_creep = match case.tangential.map(|t| t.task) {
-        None => Creepages::default(),
-        Some(TangentialTask::Rolling(RollingLoad::Creepages(c))) => c,
-        Some(_) => {
-            return Err(BadInput::error(
-                "[kinematics]: a creep curve sweeps creepages; give creepages (the unswept ones are held) or omit [kinematics]",
-            ));
-        }
-    };
+    creep_curve::check(&case).map_err(|e| bad_input(e.into()))?;
     let run_out = RunOutput::create(out, OUTPUT_SET)?;
-    let mut normal_solver =
-        NormalSolver::new(case.grid, case.material).map_err(|e| anyhow!("{e}"))?;
-    let normal = normal_solver
-        .solve(&case.gap, case.load, &case.options)
-        .map_err(|e| match e {
-            ContactError::NotConverged { .. } => anyhow!("normal problem: {e}"),
-            other => anyhow!("{other}"),
-        })?;
-    let axes = contact_case::hertz_axes(&case, normal.normal_force).ok();
-    let mut solver = TangentialSolver::new(case.grid, case.material).map_err(|e| anyhow!("{e}"))?;
-    let opts = TangentialOptions::default();
-    // The exact curve follows `contact`'s rule: with K != 0 every point is a coupled
-    // normal-tangential solve (the normal pressure changes with the tractions).
-    let coupled =
-        tangential_strategy(TangentialMethod::Exact, &case.material) == TangentialStrategy::Coupled;
-    let mut points = Vec::with_capacity(values.len());
-    let mut exact_time = 0.0;
-    for &v in &values {
-        let mut c = base_creep;
-        match which {
-            0 => c.xi = v,
-            1 => c.eta = v,
-            _ => c.phi = v,
-        }
-        let t0 = Instant::now();
-        let load = RollingLoad::Creepages(c);
-        let s = if coupled {
-            solve_coupled(
-                &mut normal_solver,
-                &mut solver,
-                &case.gap,
-                case.load,
-                mu,
-                CoupledProblem::SteadyRolling(load),
-                &case.options,
-                &opts,
-                &CoupledOptions::default(),
-            )
-            .map(|c| c.tangential)
-        } else {
-            solver.steady_rolling(&normal.pressure, mu, load, &opts)
-        }
-        .map_err(|e| anyhow!("exact solver at {} = {v:e}: {e}", flags[which]))?;
-        exact_time += t0.elapsed().as_secs_f64();
-        let (mut fsx, mut fsy, mut lx, mut ly) = (None, None, None, None);
-        if let Some((a, b)) = axes {
-            let f = contact_case::fastsim_on(&case, mu, normal.normal_force, a, b, c)?;
-            fsx = Some(f.force_x);
-            fsy = Some(f.force_y);
-            let (x, y) = linear_forces(case.material.g, case.material.nu, a, b, c.xi, c.eta, c.phi)
-                .map_err(|e| anyhow!("linear theory: {e}"))?;
-            lx = Some(x);
-            ly = Some(y);
-        }
-        points.push(CurvePoint {
-            creepage_x: c.xi,
-            creepage_y: c.eta,
-            spin: c.phi,
-            exact_force_x: s.force_x,
-            exact_force_y: s.force_y,
-            exact_spin_moment: s.moment_z,
-            exact_adhesion_elements: s.adhesion_elements,
-            exact_slip_elements: s.slip_elements,
-            exact_sweeps: s.iterations,
-            fastsim_force_x: fsx,
-            fastsim_force_y: fsy,
-            linear_force_x: lx,
-            linear_force_y: ly,
-        });
-    }
-    let curve = CreepCurve {
-        variable: ["creepage_x", "creepage_y", "spin"][which].into(),
-        mu,
-        normal_force: normal.normal_force,
-        hertz_a: axes.map(|a| a.0),
-        hertz_b: axes.map(|a| a.1),
-        grid_nx: case.grid.nx,
-        grid_ny: case.grid.ny,
-        exact_time_s: exact_time,
-        points,
-    };
+    let variable = [
+        CreepVariable::CreepageX,
+        CreepVariable::CreepageY,
+        CreepVariable::Spin,
+    ][which];
+    let curve = creep_curve::compute(&case, variable, &values, flags[which], &|| true)?;
     write(&run_out, &curve, which)?;
     run_out.commit()?;
     if json {

@@ -3,50 +3,16 @@
 use std::path::Path;
 
 use anyhow::{Result, anyhow};
-use beam::Derivative;
-use serde::Serialize;
 
 use crate::errors::bad_input;
 use crate::output::{self, RunOutput};
 use crate::plot;
 use sim::config::bridge::Bridge;
-
-#[derive(Debug, Serialize)]
-pub struct ModeRow {
-    /// Mode number (1-based; rigid-body modes first for a free–free beam).
-    pub n: usize,
-    /// Dimensionless root β_n L.
-    pub beta_l: f64,
-    /// Circular frequency ω_n [rad/s].
-    pub omega: f64,
-    /// Frequency f_n = ω_n/(2π) \[Hz\].
-    pub frequency: f64,
-}
-
-#[derive(Debug, Serialize)]
-pub struct ModesSummary {
-    pub bridge: String,
-    pub modes: Vec<ModeRow>,
-}
+use sim::modes::{ModesSummary, summary};
 
 /// Read a file's `[bridge]` block (a bridge file, or any scenario file that has one).
 pub fn read_bridge(text: &str) -> Result<Bridge> {
     Ok(sim::config::bridge::parse_bridge_file(text)?)
-}
-
-pub fn summary(b: &Bridge) -> ModesSummary {
-    let omegas = b.basis.circular_frequencies();
-    ModesSummary {
-        bridge: b.description.clone(),
-        modes: (0..omegas.len())
-            .map(|j| ModeRow {
-                n: j + 1,
-                beta_l: b.beta_l(j),
-                omega: omegas[j],
-                frequency: omegas[j] / (2.0 * std::f64::consts::PI),
-            })
-            .collect(),
-    }
 }
 
 pub fn print_table(s: &ModesSummary) {
@@ -66,19 +32,7 @@ pub fn print_table(s: &ModesSummary) {
 /// Write `mode_shapes.csv` (x and w_1 … w_m at 401 points) and `modes.png` (first 6 modes).
 pub fn write_outputs(dir: &RunOutput, b: &Bridge) -> Result<()> {
     let n = b.basis.n_modes();
-    let length = b.basis.length();
-    let samples = 401;
-    let mut shapes = vec![0.0; n];
-    let mut rows = Vec::with_capacity(samples);
-    for k in 0..samples {
-        let x = length * k as f64 / (samples - 1) as f64;
-        b.basis
-            .eval_all(x, Derivative::Shape, &mut shapes)
-            .map_err(|e| anyhow!("{e}"))?;
-        let mut row = vec![x];
-        row.extend_from_slice(&shapes);
-        rows.push(row);
-    }
+    let rows = sim::modes::shapes(b, 401).map_err(|e| anyhow!("{e}"))?;
     let names: Vec<String> = std::iter::once("x".to_string())
         .chain((1..=n).map(|j| format!("w{j}")))
         .collect();

@@ -6,11 +6,11 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use anyhow::{Context, Result, anyhow, bail};
+use anyhow::{Context, Result, anyhow};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use serde::{Deserialize, Serialize};
 use sim::config::sweep::SweepConfig;
-use sim::sweep::summary::{SweepSummary, summarise};
+use sim::sweep::shard::{self, MergeError, ShardFile};
+use sim::sweep::summary::SweepSummary;
 use sim::sweep::{Passage, Shard, SweepError};
 
 use crate::errors::bad_input;
@@ -28,45 +28,6 @@ const OUTPUT_SET: &[&str] = &[
 ];
 /// The file of a shard.
 const SHARD_SET: &[&str] = &["shard.json"];
-
-/// `summary.json`: the sweep's results, what it was run with, and its wall time.
-#[derive(Debug, Serialize)]
-struct SummaryFile<'a> {
-    #[serde(flatten)]
-    results: &'a SweepSummary,
-    bridge: String,
-    modes: usize,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    damping_ratio: Option<f64>,
-    dt: f64,
-    free_vibration: f64,
-    points: &'a [f64],
-    notes: &'a [String],
-    /// Wall time of the run (sum over the shards for a merged sweep) \[s\].
-    wall_time_s: f64,
-}
-
-/// `shard.json`: a slice of the passages, exact (floats as IEEE-754 bit patterns), with the
-/// scenario it belongs to.
-#[derive(Debug, Serialize, Deserialize)]
-struct ShardFile {
-    scenario: String,
-    /// The directory relative paths in the scenario (train files) are resolved against.
-    base: PathBuf,
-    shard: [usize; 2],
-    passages: Vec<ShardPassage>,
-    wall_time_s: f64,
-}
-
-#[derive(Debug, Serialize, Deserialize)]
-struct ShardPassage {
-    train: usize,
-    speed: usize,
-    steps: usize,
-    deflection: Vec<u64>,
-    acceleration: Vec<u64>,
-    static_deflection: Vec<u64>,
-}
 
 /// Parses `K/N` (1 ≤ K ≤ N).
 pub fn parse_shard(text: &str) -> Result<Shard> {
@@ -103,13 +64,7 @@ pub fn run(
     let passages = run_passages(&config, shard)?;
     let wall = start.elapsed().as_secs_f64();
     if shard != Shard::ALL {
-        let file = ShardFile {
-            scenario: scenario.to_string(),
-            base: base.canonicalize().unwrap_or_else(|_| base.to_path_buf()),
-            shard: [shard.index, shard.count],
-            passages: passages.iter().map(encode).collect(),
-            wall_time_s: wall,
-        };
+        let file = ShardFile::new(scenario, base, shard, &passages, wall);
         output::write_json(&run_out.path("shard.json"), &file)?;
         run_out.commit()?;
         if !json {
@@ -144,79 +99,17 @@ pub fn merge(dirs: &[PathBuf], out: &Path, json: bool) -> Result<()> {
             .map_err(bad_input)?;
         shards.push((d.clone(), file));
     }
-    let (scenario, count) = (shards[0].1.scenario.clone(), shards[0].1.shard[1]);
-    let mut seen = vec![false; count];
-    for (d, s) in &shards {
-        if s.scenario != scenario {
-            return Err(bad_input(anyhow!(
-                "{}: shard of another scenario than {}",
-                d.display(),
-                shards[0].0.display()
-            )));
-        }
-        let [k, n] = s.shard;
-        if n != count || k == 0 || k > n || std::mem::replace(&mut seen[k - 1], true) {
-            return Err(bad_input(anyhow!(
-                "{}: shard {k}/{n} does not fit the set of {count} shards (each once)",
-                d.display()
-            )));
-        }
-    }
-    if let Some(k) = seen.iter().position(|s| !s) {
-        return Err(bad_input(anyhow!(
-            "sweep-merge: shard {}/{count} is missing",
-            k + 1
-        )));
-    }
-    let base = shards[0].1.base.clone();
-    let config = match sim::config::load(&scenario, &base, &Default::default())
-        .map_err(|e| bad_input(e.into()))?
-    {
-        sim::config::ScenarioConfig::Sweep(c) => *c,
-        other => bail!("the shards hold a {} scenario, not a sweep", other.kind()),
-    };
-    let mut passages = Vec::new();
-    let mut wall = 0.0;
-    for (_, s) in &shards {
-        wall += s.wall_time_s;
-        passages.extend(s.passages.iter().map(decode));
-    }
-    passages.sort_by_key(|p| (p.train, p.speed));
-    let expected = config.spec.trains.len() * config.spec.speeds.len();
-    if passages.len() != expected {
-        return Err(bad_input(anyhow!(
-            "sweep-merge: the shards hold {} passages, the sweep has {expected}",
-            passages.len()
-        )));
-    }
+    let shards: Vec<(String, ShardFile)> = shards
+        .into_iter()
+        .map(|(d, f)| (d.display().to_string(), f))
+        .collect();
+    let merged = shard::merge(&shards).map_err(|e| match e {
+        MergeError::NotSweep(_) => anyhow!(e),
+        other => bad_input(other.into()),
+    })?;
+    let (config, passages, wall) = (merged.config, merged.passages, merged.wall_time_s);
     let run_out = RunOutput::create(out, OUTPUT_SET)?;
     finish(&config, &passages, wall, run_out, out, json)
-}
-
-fn encode(p: &Passage) -> ShardPassage {
-    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect();
-    ShardPassage {
-        train: p.train,
-        speed: p.speed,
-        steps: p.peaks.steps,
-        deflection: bits(&p.peaks.deflection),
-        acceleration: bits(&p.peaks.acceleration),
-        static_deflection: bits(&p.peaks.static_deflection),
-    }
-}
-
-fn decode(p: &ShardPassage) -> Passage {
-    let floats = |v: &[u64]| v.iter().map(|b| f64::from_bits(*b)).collect();
-    Passage {
-        train: p.train,
-        speed: p.speed,
-        peaks: beam::PassagePeaks {
-            deflection: floats(&p.deflection),
-            acceleration: floats(&p.acceleration),
-            static_deflection: floats(&p.static_deflection),
-            steps: p.steps,
-        },
-    }
 }
 
 /// The passages of `shard` with a progress bar; Ctrl-C stops them (nothing is written).
@@ -262,37 +155,16 @@ fn finish(
     json: bool,
 ) -> Result<()> {
     let spec = &config.spec;
-    let axle_counts: Vec<usize> = sim::sweep::train_axles(spec)
-        .map_err(|e| anyhow!("{e}"))?
-        .iter()
-        .map(Vec::len)
-        .collect();
-    let summary = summarise(
-        spec,
-        passages,
-        config.track,
-        config.first_frequency,
-        &axle_counts,
-    );
-    let file = SummaryFile {
-        results: &summary,
-        bridge: config.bridge.description.clone(),
-        modes: config.bridge.basis.n_modes(),
-        damping_ratio: config.damping_ratio,
-        dt: spec.dt,
-        free_vibration: spec.free_vibration,
-        points: &spec.points,
-        notes: &config.notes,
-        wall_time_s: wall,
-    };
+    let file = shard::report(config, passages, wall).map_err(|e| anyhow!("{e}"))?;
+    let summary = &file.results;
     output::write_json(&run_out.path("summary.json"), &file)?;
     write_csv(&run_out, spec, passages)?;
-    plot_sweep(&run_out, config, &summary, passages)?;
+    plot_sweep(&run_out, config, summary, passages)?;
     run_out.commit()?;
     if json {
         println!("{}", output::json_text(&file)?);
     } else {
-        print_summary(config, &summary, wall);
+        print_summary(config, summary, wall);
         println!(
             "wrote {}/summary.json, sweep.csv, acceleration.png, deflection.png, governing.png",
             out.display()
@@ -307,33 +179,9 @@ fn write_csv(
     passages: &[Passage],
 ) -> Result<()> {
     // One row per (train, speed, output point); the train as its index (names in summary.json).
-    let header = [
-        "train",
-        "speed_m_s",
-        "point_m",
-        "max_deflection_m",
-        "max_acceleration_m_s2",
-        "max_static_deflection_m",
-        "dynamic_factor",
-    ];
-    let rows = passages.iter().flat_map(|p| {
-        (0..spec.points.len()).map(move |k| {
-            let (w, a, s) = (
-                p.peaks.deflection[k],
-                p.peaks.acceleration[k],
-                p.peaks.static_deflection[k],
-            );
-            vec![
-                p.train as f64,
-                spec.speeds[p.speed],
-                spec.points[k],
-                w,
-                a,
-                s,
-                if s > 0.0 { w / s } else { 0.0 },
-            ]
-        })
-    });
+    let columns = sim::sweep::summary::passage_table(spec, passages);
+    let rows = (0..columns[0].len()).map(|r| columns.iter().map(|c| c[r]).collect::<Vec<f64>>());
+    let header = sim::sweep::summary::PASSAGE_COLUMNS;
     output::write_csv(&run_out.path("sweep.csv"), &header, rows)
 }
 

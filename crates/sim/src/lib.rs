@@ -6,11 +6,17 @@
 //! * [`vehicle_bridge`]: wheels (moving force, moving mass, quarter car, several axles) over a
 //!   modal Euler–Bernoulli bridge with Hertz or boundary-element contact, coupled every time
 //!   step (Picard, the seed's quasi-Newton/Sherman–Morrison, Woodbury, Newton);
+//! * [`contact_case`]: a contact case solved (normal, tangential) with its summary;
+//! * [`creep_curve`]: creep force against creepage (exact, FASTSIM, linear theory);
+//! * [`modes`]: the modal table and mode shapes of a bridge;
 //! * [`config`]: scenario files (TOML text) parsed once into these types, with the
 //!   numerical defaults and the range checks of every key.
 
 pub mod ball_drop;
 pub mod config;
+pub mod contact_case;
+pub mod creep_curve;
+pub mod modes;
 pub mod sweep;
 pub mod train;
 pub mod vehicle_bridge;

@@ -308,10 +308,106 @@ fn body(spec: &BodySpec, section: &str) -> Result<Body, ConfigError> {
     Body::elastic(e, nu).map_err(|err| invalid!("[{section}] {err}"))
 }
 
-fn material(case: &ContactCase) -> Result<Material, ConfigError> {
-    let b1 = body(&case.body1, "body1")?;
-    let b2 = body(&case.body2, "body2")?;
-    Material::combine(b1, b2).map_err(|e| invalid!("[body1]/[body2]: {e}"))
+/// The combined material of `[body1]`, `[body2]` (range-checked).
+pub fn checked_material(body1: &BodySpec, body2: &BodySpec) -> Result<Material, ConfigError> {
+    let b1 = body(body1, "body1")?;
+    let b2 = body(body2, "body2")?;
+    let material = Material::combine(b1, b2).map_err(|e| invalid!("[body1]/[body2]: {e}"))?;
+    for (key, b) in [("body1", body1), ("body2", body2)] {
+        ranges::MODULUS.check_opt(&format!("{key}.E"), b.e)?;
+    }
+    Ok(material)
+}
+
+/// The normal load of `[load]` (exactly one of `force`, `approach`; range-checked).
+pub fn checked_load(spec: &LoadSpec) -> Result<NormalLoad, ConfigError> {
+    let load = load(spec)?;
+    match load {
+        NormalLoad::Force(f) => ranges::FORCE.check("load.force", f)?,
+        NormalLoad::Approach(d) => ranges::SMALL_DISPLACEMENT.check("load.approach", d)?,
+    };
+    Ok(load)
+}
+
+/// The NormCG options of `[solver]` (range-checked; absent keys keep the defaults).
+pub fn solver_options(s: &SolverSpec) -> Result<SolverOptions, ConfigError> {
+    let mut options = SolverOptions::default();
+    if let Some(tol) = s.tol {
+        if !tol.is_finite() || tol <= 0.0 || tol >= 1.0 {
+            bail!("[solver] `tol` = {tol}: must lie in (0, 1)");
+        }
+        ranges::TOLERANCE.check("solver.tol", tol)?;
+        options.tol = tol;
+    }
+    if let Some(m) = s.max_iter {
+        if m == 0 {
+            bail!("[solver] `max_iter` = 0: must be at least 1");
+        }
+        options.max_iter = checks::count("solver.max_iter", m, 1, MAX_ITERATIONS)?;
+    }
+    Ok(options)
+}
+
+/// A user-made gap (the Python package's `solve_normal`): the bodies, load and solver
+/// options checked as a case file's, the grid as an explicit `[grid]` with `nx`, `ny`, `dx`,
+/// `dy` (centred on the origin), and the gap values finite, one per element (row-major, x
+/// fastest).
+pub struct UserGap {
+    /// Combined material.
+    pub material: Material,
+    /// The grid.
+    pub grid: Grid,
+    /// The load.
+    pub load: NormalLoad,
+    /// NormCG options.
+    pub options: SolverOptions,
+}
+
+/// Checks the inputs of a user-made gap (see [`UserGap`]); `gap` has `ny · nx` values \[m\].
+#[allow(clippy::too_many_arguments)]
+pub fn user_gap(
+    body1: &BodySpec,
+    body2: &BodySpec,
+    (nx, ny): (usize, usize),
+    (dx, dy): (f64, f64),
+    gap: &[f64],
+    load: &LoadSpec,
+    solver: &SolverSpec,
+) -> Result<UserGap, ConfigError> {
+    let material = checked_material(body1, body2)?;
+    let load = checked_load(load)?;
+    let spec = GridSpec {
+        nx: Some(nx),
+        ny: Some(ny),
+        dx: Some(dx),
+        dy: Some(dy),
+        x0: None,
+        y0: None,
+        n: None,
+    };
+    let grid = explicit_grid(&spec)?.ok_or_else(|| invalid!("[grid]: missing `nx`"))?;
+    if gap.len() != nx * ny {
+        bail!(
+            "`gap` has {} values, the grid {nx} × {ny} = {}",
+            gap.len(),
+            nx * ny
+        );
+    }
+    if let Some(k) = gap.iter().position(|h| !h.is_finite()) {
+        bail!(
+            "`gap` = {} at element (ix, iy) = ({}, {}): must be finite",
+            gap[k],
+            k % nx,
+            k / nx
+        );
+    }
+    let options = solver_options(solver)?;
+    Ok(UserGap {
+        material,
+        grid,
+        load,
+        options,
+    })
 }
 
 fn load(spec: &LoadSpec) -> Result<NormalLoad, ConfigError> {
@@ -515,15 +611,8 @@ fn prepare(case: ContactCase, base: &Path) -> Result<PreparedCase, ConfigError> 
     {
         bail!("`kind` = \"{kind}\" is not a contact case");
     }
-    let material = material(&case)?;
-    for (key, b) in [("body1", &case.body1), ("body2", &case.body2)] {
-        ranges::MODULUS.check_opt(&format!("{key}.E"), b.e)?;
-    }
-    let load = load(&case.load)?;
-    match load {
-        NormalLoad::Force(f) => ranges::FORCE.check("load.force", f)?,
-        NormalLoad::Approach(d) => ranges::SMALL_DISPLACEMENT.check("load.approach", d)?,
-    };
+    let material = checked_material(&case.body1, &case.body2)?;
+    let load = checked_load(&case.load)?;
     let grid_spec = case.grid.as_ref();
     let explicit = match grid_spec {
         Some(g) => explicit_grid(g)?,
@@ -543,22 +632,10 @@ fn prepare(case: ContactCase, base: &Path) -> Result<PreparedCase, ConfigError> 
         }
     };
     let gap = shape.sample(&grid).map_err(|e| invalid!("[gap] {e}"))?;
-    let mut options = SolverOptions::default();
-    if let Some(s) = &case.solver {
-        if let Some(tol) = s.tol {
-            if !tol.is_finite() || tol <= 0.0 || tol >= 1.0 {
-                bail!("[solver] `tol` = {tol}: must lie in (0, 1)");
-            }
-            ranges::TOLERANCE.check("solver.tol", tol)?;
-            options.tol = tol;
-        }
-        if let Some(m) = s.max_iter {
-            if m == 0 {
-                bail!("[solver] `max_iter` = 0: must be at least 1");
-            }
-            options.max_iter = checks::count("solver.max_iter", m, 1, MAX_ITERATIONS)?;
-        }
-    }
+    let options = match &case.solver {
+        Some(s) => solver_options(s)?,
+        None => SolverOptions::default(),
+    };
     let (mu, tangential) = tangential_case(case.friction.as_ref(), case.kinematics.as_ref())?;
     if let Some(t) = &tangential
         && t.method != TangentialMethod::Exact

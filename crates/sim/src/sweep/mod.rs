@@ -5,12 +5,14 @@
 //! depend on the number of threads or on the order in which passages finish.
 //!
 //! * [`eurocode`]: EN 1991-2 / EN 1990 A2 damping, modes and limits;
-//! * [`summary`]: per-train maxima, the envelope over trains, the check.
+//! * [`summary`]: per-train maxima, the envelope over trains, the check;
+//! * [`shard`]: shards stored exactly, their merge, the report of a whole sweep.
 //!
 //! A sweep can be cut into disjoint shards ([`Shard`]) whose passages, concatenated in any
 //! order, summarise exactly as the whole sweep (`dyncontact sweep --shard`, `sweep-merge`).
 
 pub mod eurocode;
+pub mod shard;
 pub mod summary;
 
 use beam::{Axle as BeamAxle, ModalBasis, ModalDamping, PassagePeaks, PassagePlan};

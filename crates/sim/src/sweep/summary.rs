@@ -193,3 +193,44 @@ pub fn summarise(
         runs: passages.len(),
     }
 }
+
+/// The columns of [`passage_table`] (the CLI's `sweep.csv`; SI units as the names say).
+pub const PASSAGE_COLUMNS: [&str; 7] = [
+    "train",
+    "speed_m_s",
+    "point_m",
+    "max_deflection_m",
+    "max_acceleration_m_s2",
+    "max_static_deflection_m",
+    "dynamic_factor",
+];
+
+/// One row per (passage, output point), in the order of `passages`, as columns
+/// ([`PASSAGE_COLUMNS`]): the train as its index, the speed, the point, the peaks and the
+/// dynamic factor (peak deflection over peak quasi-static deflection; 0 where the latter is
+/// not positive).
+pub fn passage_table(spec: &SweepSpec, passages: &[Passage]) -> [Vec<f64>; 7] {
+    let mut columns: [Vec<f64>; 7] = Default::default();
+    for p in passages {
+        for k in 0..spec.points.len() {
+            let (w, a, s) = (
+                p.peaks.deflection[k],
+                p.peaks.acceleration[k],
+                p.peaks.static_deflection[k],
+            );
+            let row = [
+                p.train as f64,
+                spec.speeds[p.speed],
+                spec.points[k],
+                w,
+                a,
+                s,
+                if s > 0.0 { w / s } else { 0.0 },
+            ];
+            for (c, v) in columns.iter_mut().zip(row) {
+                c.push(v);
+            }
+        }
+    }
+    columns
+}
