@@ -77,6 +77,32 @@ pub trait ModalBasis {
     }
 }
 
+/// A shared basis is a basis (so one set of modes, computed once, can serve many runs, e.g.
+/// the passages of a speed sweep with vehicle interaction).
+impl<T: ModalBasis + ?Sized> ModalBasis for std::sync::Arc<T> {
+    fn n_modes(&self) -> usize {
+        (**self).n_modes()
+    }
+    fn length(&self) -> f64 {
+        (**self).length()
+    }
+    fn circular_frequencies(&self) -> &[f64] {
+        (**self).circular_frequencies()
+    }
+    fn eval_all(&self, x: f64, d: Derivative, out: &mut [f64]) -> Result<(), BeamError> {
+        (**self).eval_all(x, d, out)
+    }
+    fn mode_value(&self, j: usize, x: f64, d: Derivative) -> Result<f64, BeamError> {
+        (**self).mode_value(j, x, d)
+    }
+    fn bending_stiffness(&self, x: f64) -> Result<f64, BeamError> {
+        (**self).bending_stiffness(x)
+    }
+    fn modal_mass(&self, j: usize) -> Result<f64, BeamError> {
+        (**self).modal_mass(j)
+    }
+}
+
 /// Error unless `j < n_modes`.
 pub(crate) fn check_mode(j: usize, n_modes: usize) -> Result<(), BeamError> {
     if j < n_modes {

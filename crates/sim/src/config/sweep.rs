@@ -9,7 +9,7 @@
 //! type = "prestressed_concrete"
 //! [trains]
 //! names = ["HSLM-A"]       # HSLM-A (all ten), HSLM-A1 … HSLM-A10, real trains (AVE-S103, …)
-//! model = "moving_forces"
+//! model = "moving_forces"  # or "interaction": the vehicle models with [contact] (as vehicle_bridge)
 //! [speeds]                 # m/s: from/to/step, or list
 //! from = 38.8889
 //! to = 116.6667
@@ -25,8 +25,9 @@ use serde::Deserialize;
 use super::ConfigError;
 use super::bridge::{Bridge, BridgeSpec};
 use super::checks::{self, ranges};
-use crate::sweep::SweepSpec;
 use crate::sweep::eurocode::{self, BridgeType, Track};
+use crate::sweep::interaction::{InteractionModel, TrainVehicles};
+use crate::sweep::{SweepModel, SweepSpec};
 use crate::train::{MovingForces, Train, VehicleSpec, hslm, presets};
 
 /// Steps per period of the highest retained mode (default time step 1/(40 f_max)): the sampled
@@ -60,6 +61,9 @@ pub struct SweepFile {
     pub check: Option<CheckSpec>,
     /// Time step and free vibration.
     pub integrator: Option<IntegratorSpec>,
+    /// The wheel–rail contact of the interaction model (the keys of vehicle_bridge's
+    /// `[contact]`).
+    pub contact: Option<super::vehicle_bridge::ContactSpec>,
 }
 
 /// `[trains]`.
@@ -74,7 +78,7 @@ pub struct TrainsSpec {
     /// each vehicle's static axle loads.
     #[serde(default)]
     pub files: Vec<String>,
-    /// `moving_forces` (default).
+    /// `moving_forces` (default) or `interaction`.
     pub model: Option<String>,
     /// Trains given by their axles.
     #[serde(default)]
@@ -127,8 +131,18 @@ pub struct CheckSpec {
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct IntegratorSpec {
-    /// Time step \[s\] (default 1/(40 f_max)).
+    /// Time step \[s\] (default 1/(40 f_max); interaction: the coupled model's default).
     pub dt: Option<f64>,
+    /// Interaction model: the structural method (default as vehicle_bridge).
+    pub method: Option<String>,
+    /// Newmark β (interaction model).
+    pub beta: Option<f64>,
+    /// Newmark γ (interaction model).
+    pub gamma: Option<f64>,
+    /// HHT α (interaction model).
+    pub alpha: Option<f64>,
+    /// Generalized-α ρ∞ (interaction model).
+    pub rho_inf: Option<f64>,
     /// Free vibration after the last axle \[s\] (default 2 periods of mode 1).
     pub free_vibration: Option<f64>,
 }
@@ -155,13 +169,28 @@ pub fn build(file: SweepFile, base: &std::path::Path) -> Result<SweepConfig, Con
         bail!("`kind` = \"{}\": expected \"sweep\"", file.kind);
     }
     let model = file.trains.model.as_deref().unwrap_or("moving_forces");
-    match model {
-        "moving_forces" => {}
-        "interaction" => bail!(
-            "[trains] `model` = \"interaction\" is not available yet (it needs the multibody train models of vehicle_bridge); use model = \"moving_forces\""
-        ),
-        other => bail!("[trains] `model` = \"{other}\": expected moving_forces"),
+    let interaction = match model {
+        "moving_forces" => false,
+        "interaction" => true,
+        other => bail!("[trains] `model` = \"{other}\": expected moving_forces or interaction"),
+    };
+    if !interaction && file.contact.is_some() {
+        bail!("[contact] applies to [trains] model = \"interaction\" only");
     }
+    if !interaction
+        && file.integrator.as_ref().is_some_and(|i| {
+            i.method.is_some()
+                || i.beta.is_some()
+                || i.gamma.is_some()
+                || i.alpha.is_some()
+                || i.rho_inf.is_some()
+        })
+    {
+        bail!(
+            "[integrator] `method` and its parameters apply to [trains] model = \"interaction\" only (moving forces use the exact modal recurrence)"
+        );
+    }
+    let bridge_table = interaction.then(|| file.bridge.clone());
     let speeds = speeds(&file.speeds)?;
     let trains = trains(&file.trains, base)?;
     checks::count(
@@ -183,9 +212,13 @@ pub fn build(file: SweepFile, base: &std::path::Path) -> Result<SweepConfig, Con
     let f_max = omegas[omegas.len() - 1] / two_pi;
     let length = bridge.basis.length();
     let integ = file.integrator.as_ref();
-    let dt = match integ.and_then(|i| i.dt) {
-        Some(dt) => ranges::TIME_STEP.check("integrator.dt", dt)?,
-        None => 1.0 / (STEPS_PER_PERIOD * f_max),
+    let dt_given = match integ.and_then(|i| i.dt) {
+        Some(dt) => Some(ranges::TIME_STEP.check("integrator.dt", dt)?),
+        None => None,
+    };
+    let dt = match (dt_given, interaction) {
+        (Some(dt), false) => dt,
+        _ => 1.0 / (STEPS_PER_PERIOD * f_max),
     };
     let free_vibration = match integ.and_then(|i| i.free_vibration) {
         Some(f) => checks::Range::closed(0.0, 1e4, "s").check("integrator.free_vibration", f)?,
@@ -212,6 +245,17 @@ pub fn build(file: SweepFile, base: &std::path::Path) -> Result<SweepConfig, Con
             invalid!("[check] `track` = \"{name}\": expected ballasted or ballastless")
         })?,
     };
+    let model = match bridge_table {
+        None => SweepModel::MovingForces,
+        Some(table) => SweepModel::Interaction(Box::new(interaction_model(
+            &trains,
+            table,
+            file.contact.as_ref(),
+            integ,
+            dt_given,
+            speeds.iter().copied().fold(0.0, f64::max),
+        )?)),
+    };
     let spec = SweepSpec {
         trains,
         speeds,
@@ -219,6 +263,7 @@ pub fn build(file: SweepFile, base: &std::path::Path) -> Result<SweepConfig, Con
         dt,
         free_vibration,
         gravity: crate::vehicle_bridge::GRAVITY,
+        model,
     };
     check_work(&spec, length)?;
     Ok(SweepConfig {
@@ -453,10 +498,14 @@ fn bridge(
 /// Refuses a sweep whose total time steps are absurd (before any passage runs).
 fn check_work(spec: &SweepSpec, length: f64) -> Result<(), ConfigError> {
     let mut total = 0.0;
-    for t in &spec.trains {
+    for (i, t) in spec.trains.iter().enumerate() {
         let span = t.length();
+        let dt = match &spec.model {
+            SweepModel::MovingForces => spec.dt,
+            SweepModel::Interaction(m) => m.trains[i].dt,
+        };
         for &v in &spec.speeds {
-            total += ((length + span) / v + spec.free_vibration) / spec.dt;
+            total += ((length + span) / v + spec.free_vibration) / dt;
         }
     }
     if total.is_nan() || total > MAX_TOTAL_STEPS {
@@ -467,4 +516,99 @@ fn check_work(spec: &SweepSpec, length: f64) -> Result<(), ConfigError> {
         )));
     }
     Ok(())
+}
+
+/// The interaction model: each train's wheels and multibody vehicles (its leading axle at the
+/// span's entry), the contact law of `[contact]`, the structural method of `[integrator]`, and
+/// per train the time step (given, or the coupled model's default that resolves its contact
+/// modes, `vehicle_bridge::default_dt`); every train checked as a vehicle_bridge scenario at
+/// the highest speed. Trains given by their axle loads only (moving forces, HSLM-A) have no
+/// vehicle model and are refused.
+fn interaction_model(
+    trains: &[Train],
+    bridge_table: toml::Table,
+    contact: Option<&super::vehicle_bridge::ContactSpec>,
+    integ: Option<&IntegratorSpec>,
+    dt_given: Option<f64>,
+    top_speed: f64,
+) -> Result<InteractionModel, ConfigError> {
+    use super::vehicle_bridge as vb;
+    use crate::vehicle_bridge::{CouplingSpec, Integrator, Irregularity, Scenario};
+    let (bridge, _) = bridge(bridge_table, &mut Vec::new())?;
+    let basis: std::sync::Arc<dyn beam::ModalBasis + Send + Sync> =
+        std::sync::Arc::from(bridge.basis);
+    let method_name = integ
+        .and_then(|i| i.method.as_deref())
+        .unwrap_or(vb::DEFAULT_METHOD);
+    if method_name == "radau5" {
+        bail!(
+            "[integrator] `method` = \"radau5\": the interaction sweep uses the structural methods (newmark, hht, generalized_alpha, backward_euler)"
+        );
+    }
+    let parameters = super::integrator::StructuralParameters {
+        beta: integ.and_then(|i| i.beta),
+        gamma: integ.and_then(|i| i.gamma),
+        alpha: integ.and_then(|i| i.alpha),
+        rho_inf: integ.and_then(|i| i.rho_inf),
+    };
+    let integrator = Integrator::Structural(parameters.method(method_name)?);
+    let mut wheels_max = 1;
+    let mut vehicles = Vec::with_capacity(trains.len());
+    for t in trains {
+        if t.vehicles
+            .iter()
+            .any(|v| matches!(v, VehicleSpec::MovingForces(_)))
+        {
+            bail!(
+                "[trains] model = \"interaction\": train \"{}\" is given by its axle loads only (moving forces; EN 1991-2 defines HSLM-A so), and the interaction model needs vehicle models: use presets or train files of quarter_car, sprung_mass, bogie_vehicle or articulated vehicles, or model = \"moving_forces\"",
+                t.name
+            );
+        }
+        let (wheels, layouts) =
+            vb::wheels_of(t, 0.0).map_err(|e| invalid!("[trains] train \"{}\": {e}", t.name))?;
+        wheels_max = wheels_max.max(wheels.len());
+        vehicles.push(TrainVehicles {
+            wheels,
+            layouts,
+            dt: f64::NAN,
+        });
+    }
+    let (contact, geometry) = vb::contact_of(contact, wheels_max)?;
+    let mut model = InteractionModel {
+        basis,
+        damping: bridge.damping,
+        trains: Vec::new(),
+        contact,
+        geometry,
+        integrator,
+        coupling: CouplingSpec::default(),
+        gravity: crate::vehicle_bridge::GRAVITY,
+    };
+    for (t, mut v) in trains.iter().zip(vehicles) {
+        let mut scenario = Scenario {
+            bridge: Box::new(std::sync::Arc::clone(&model.basis)),
+            damping: model.damping.clone(),
+            wheels: v.wheels.clone(),
+            speed: top_speed,
+            contact,
+            geometry,
+            irregularity: Irregularity::None,
+            integrator,
+            dt: dt_given.unwrap_or(vb::DEFAULT_DT),
+            duration: None,
+            coupling: model.coupling,
+            gravity: model.gravity,
+            output_point: 0.5 * model.basis.length(),
+        };
+        let name = &t.name;
+        let in_train = |e: ConfigError| invalid!("[trains] train \"{name}\": {e}");
+        vb::check_ranges(&scenario).map_err(in_train)?;
+        vb::check_implicit(&scenario).map_err(in_train)?;
+        if dt_given.is_none() {
+            scenario.dt = vb::default_dt(&scenario).map_err(in_train)?;
+        }
+        v.dt = scenario.dt;
+        model.trains.push(v);
+    }
+    Ok(model)
 }

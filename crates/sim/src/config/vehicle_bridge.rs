@@ -309,7 +309,6 @@ fn train_wheels(
     ),
     ConfigError,
 > {
-    use crate::train::VehicleSpec as V;
     let train = super::train::build(table, "train")?;
     let speed = table
         .speed
@@ -317,6 +316,17 @@ fn train_wheels(
     ranges::SPEED.check("train.speed", speed)?;
     let position = table.position.unwrap_or(0.0);
     ranges::POSITION.check("train.position", position)?;
+    let (wheels, layouts) = wheels_of(&train, position)?;
+    Ok((wheels, speed, layouts))
+}
+
+/// The wheels and multibody vehicles of `train` with its leading axle at `position` \[m\]
+/// (see [`train_wheels`]); an error for vehicle types the coupled model does not have.
+pub(crate) fn wheels_of(
+    train: &crate::train::Train,
+    position: f64,
+) -> Result<(Vec<WheelSpec>, Vec<crate::vehicle_bridge::VehicleLayout>), ConfigError> {
+    use crate::train::VehicleSpec as V;
     let g = GRAVITY;
     let mut offset = 0.0;
     let mut wheels = Vec::new();
@@ -424,7 +434,7 @@ fn train_wheels(
         offset += length;
     }
     checks::count("the wheels of [train]", wheels.len(), 1, checks::MAX_WHEELS)?;
-    Ok((wheels, speed, layouts))
+    Ok((wheels, layouts))
 }
 
 /// The coupled model's requirements on an articulated train: positive masses, inertias and
@@ -495,51 +505,7 @@ pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError
     let length = bridge.basis.length();
 
     let c = file.contact.as_ref();
-    let geometry = ContactGeometry {
-        wheel_radius: c
-            .and_then(|c| c.wheel_radius)
-            .unwrap_or(DEFAULT_GEOMETRY.wheel_radius),
-        rail_profile_radius: c
-            .and_then(|c| c.rail_profile_radius)
-            .unwrap_or(DEFAULT_GEOMETRY.rail_profile_radius),
-        youngs_modulus: c
-            .and_then(|c| c.e)
-            .unwrap_or(DEFAULT_GEOMETRY.youngs_modulus),
-        poisson_ratio: c
-            .and_then(|c| c.nu)
-            .unwrap_or(DEFAULT_GEOMETRY.poisson_ratio),
-    };
-    let contact = match c
-        .and_then(|c| c.model.as_deref())
-        .unwrap_or(DEFAULT_CONTACT_MODEL)
-    {
-        "rigid" => ContactModel::Rigid,
-        "hertz" => ContactModel::Hertz,
-        "bem" => {
-            let elements = c.and_then(|c| c.grid).unwrap_or(DEFAULT_BEM_GRID);
-            checks::grid("contact.grid", elements, elements)?;
-            // Every wheel holds its own solver and grid.
-            checks::memory(
-                "`contact.grid` for every wheel",
-                (elements * elements) as f64 * wheels.len() as f64,
-                checks::GRID_BYTES_PER_ELEMENT,
-            )?;
-            ContactModel::Bem {
-                elements,
-                tol: ranges::TOLERANCE.check(
-                    "contact.bem_tol",
-                    c.and_then(|c| c.bem_tol).unwrap_or(DEFAULT_BEM_TOL),
-                )?,
-            }
-        }
-        other => bail!("[contact] `model` = \"{other}\": expected rigid, hertz or bem"),
-    };
-    if let Some(c) = c
-        && !matches!(contact, ContactModel::Bem { .. })
-        && (c.grid.is_some() || c.bem_tol.is_some())
-    {
-        bail!("[contact]: `grid` and `bem_tol` apply to model = \"bem\" only");
-    }
+    let (contact, geometry) = contact_of(c, wheels.len())?;
 
     let irregularity = match &file.irregularity {
         None => Irregularity::None,
@@ -630,6 +596,60 @@ pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError
     })
 }
 
+/// The contact model and geometry of a `[contact]` table (vehicle_bridge; the sweep's
+/// interaction model), for `wheels` wheels (each BEM wheel holds its own grid).
+pub(crate) fn contact_of(
+    c: Option<&ContactSpec>,
+    wheels: usize,
+) -> Result<(ContactModel, ContactGeometry), ConfigError> {
+    let geometry = ContactGeometry {
+        wheel_radius: c
+            .and_then(|c| c.wheel_radius)
+            .unwrap_or(DEFAULT_GEOMETRY.wheel_radius),
+        rail_profile_radius: c
+            .and_then(|c| c.rail_profile_radius)
+            .unwrap_or(DEFAULT_GEOMETRY.rail_profile_radius),
+        youngs_modulus: c
+            .and_then(|c| c.e)
+            .unwrap_or(DEFAULT_GEOMETRY.youngs_modulus),
+        poisson_ratio: c
+            .and_then(|c| c.nu)
+            .unwrap_or(DEFAULT_GEOMETRY.poisson_ratio),
+    };
+    let contact = match c
+        .and_then(|c| c.model.as_deref())
+        .unwrap_or(DEFAULT_CONTACT_MODEL)
+    {
+        "rigid" => ContactModel::Rigid,
+        "hertz" => ContactModel::Hertz,
+        "bem" => {
+            let elements = c.and_then(|c| c.grid).unwrap_or(DEFAULT_BEM_GRID);
+            checks::grid("contact.grid", elements, elements)?;
+            // Every wheel holds its own solver and grid.
+            checks::memory(
+                "`contact.grid` for every wheel",
+                (elements * elements) as f64 * wheels as f64,
+                checks::GRID_BYTES_PER_ELEMENT,
+            )?;
+            ContactModel::Bem {
+                elements,
+                tol: ranges::TOLERANCE.check(
+                    "contact.bem_tol",
+                    c.and_then(|c| c.bem_tol).unwrap_or(DEFAULT_BEM_TOL),
+                )?,
+            }
+        }
+        other => bail!("[contact] `model` = \"{other}\": expected rigid, hertz or bem"),
+    };
+    if let Some(c) = c
+        && !matches!(contact, ContactModel::Bem { .. })
+        && (c.grid.is_some() || c.bem_tol.is_some())
+    {
+        bail!("[contact]: `grid` and `bem_tol` apply to model = \"bem\" only");
+    }
+    Ok((contact, geometry))
+}
+
 fn need(v: Option<f64>, key: &str, kind: &str) -> Result<f64, ConfigError> {
     v.ok_or_else(|| invalid!("[irregularity] kind = \"{kind}\" needs `{key}`"))
 }
@@ -700,7 +720,7 @@ fn irregularity(spec: &IrregularitySpec, wheel_radius: f64) -> Result<Irregulari
 }
 
 /// Physical ranges of the keys (after the sign checks above, whose messages are kept).
-fn check_ranges(s: &Scenario) -> Result<(), ConfigError> {
+pub(crate) fn check_ranges(s: &Scenario) -> Result<(), ConfigError> {
     for (k, w) in s.wheels.iter().enumerate() {
         let key = |f: &str| format!("vehicle.wheels[{k}].{f}");
         ranges::POSITION.check(&key("position"), w.position)?;
@@ -866,7 +886,7 @@ fn check_run_length(s: &Scenario, every: usize) -> Result<(), ConfigError> {
 }
 
 /// The coupled step needs an implicit structural method (not for Radau5).
-fn check_implicit(s: &Scenario) -> Result<(), ConfigError> {
+pub(crate) fn check_implicit(s: &Scenario) -> Result<(), ConfigError> {
     if let Integrator::Structural(method) = s.integrator
         && method.is_explicit()
     {

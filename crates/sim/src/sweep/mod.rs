@@ -12,6 +12,7 @@
 //! order, summarise exactly as the whole sweep (`dyncontact sweep --shard`, `sweep-merge`).
 
 pub mod eurocode;
+pub mod interaction;
 pub mod shard;
 pub mod summary;
 
@@ -35,6 +36,18 @@ pub struct SweepSpec {
     pub free_vibration: f64,
     /// Gravity \[m/s²\] for the static axle loads of vehicle models.
     pub gravity: f64,
+    /// The train model: moving forces (default), or the vehicles with their contact law.
+    pub model: SweepModel,
+}
+
+/// How the trains load the bridge.
+#[derive(Debug, Clone, Default)]
+pub enum SweepModel {
+    /// Their static axle loads as moving forces (exact modal recurrence).
+    #[default]
+    MovingForces,
+    /// Their vehicle models coupled to the bridge through the contact law ([`interaction`]).
+    Interaction(Box<interaction::InteractionModel>),
 }
 
 /// The K-th (1-based) of N disjoint slices of the (train, speed) list: passage i belongs to
@@ -77,6 +90,16 @@ pub enum SweepError {
     /// A train description is invalid.
     #[error("{0}")]
     Train(#[from] TrainError),
+    /// A coupled vehicle–bridge passage (interaction model) failed.
+    #[error("{train} at {speed} m/s: {source}")]
+    Interaction {
+        /// The train's name.
+        train: String,
+        /// The speed \[m/s\].
+        speed: f64,
+        /// What failed.
+        source: Box<crate::vehicle_bridge::VehicleBridgeError>,
+    },
     /// Stopped by the caller (an interrupt).
     #[error("the sweep was interrupted after {done} of {total} passages")]
     Interrupted {
@@ -123,6 +146,16 @@ pub fn run(
         .map(|i| (i / ns, i % ns))
         .collect();
     let total = jobs.len();
+    // Mode shapes at the output points (interaction model), point-major.
+    let m = basis.n_modes();
+    let mut point_shapes = vec![0.0; m * spec.points.len()];
+    for (p, &x) in spec.points.iter().enumerate() {
+        basis.eval_all(
+            x,
+            beam::Derivative::Shape,
+            &mut point_shapes[p * m..(p + 1) * m],
+        )?;
+    }
     let results: Vec<Option<Result<Passage, SweepError>>> = jobs
         .par_iter()
         .map_init(
@@ -131,21 +164,31 @@ pub fn run(
                 if !tick() {
                     return None;
                 }
-                Some(
-                    plan.peaks(
-                        basis,
-                        &axles[train],
-                        spec.speeds[speed],
-                        spec.free_vibration,
-                        work,
-                    )
-                    .map(|peaks| Passage {
-                        train,
-                        speed,
-                        peaks,
-                    })
-                    .map_err(SweepError::from),
-                )
+                let v = spec.speeds[speed];
+                let moving = plan
+                    .peaks(basis, &axles[train], v, spec.free_vibration, work)
+                    .map_err(SweepError::from);
+                let peaks = match (&spec.model, moving) {
+                    (SweepModel::MovingForces, moving) => moving,
+                    (SweepModel::Interaction(model), Ok(moving)) => {
+                        interaction::passage(model, train, v, &point_shapes, spec.free_vibration)
+                            .map(|peaks| beam::PassagePeaks {
+                                static_deflection: moving.static_deflection,
+                                ..peaks
+                            })
+                            .map_err(|e| SweepError::Interaction {
+                                train: spec.trains[train].name.clone(),
+                                speed: v,
+                                source: Box::new(e),
+                            })
+                    }
+                    (_, Err(e)) => Err(e),
+                };
+                Some(peaks.map(|peaks| Passage {
+                    train,
+                    speed,
+                    peaks,
+                }))
             },
         )
         .collect();

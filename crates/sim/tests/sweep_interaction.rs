@@ -1,0 +1,131 @@
+//! The sweep's interaction model (`[trains] model = "interaction"`): each passage is the
+//! coupled vehicle–bridge run of the train's vehicle models. Checked against independent
+//! references: the closed-form static influence line of a simply supported beam for a slow
+//! passage (φ' → 1), the same passage run directly as a `vehicle_bridge` scenario, and the
+//! refusal of trains that have no vehicle model (HSLM-A: point forces).
+
+use std::path::Path;
+
+use sim::config::sweep::SweepConfig;
+use sim::config::{self, LoadOptions, ScenarioConfig};
+use sim::sweep::{Shard, run};
+
+const L: f64 = 20.0;
+const EI: f64 = 1.95e10;
+const BRIDGE: &str = "[bridge]\nlength = 20.0\nEI = 1.95e10\nmass_per_length = 12000.0\nsupports = \"simply_supported\"\nmodes = 3\ndamping_ratio = 0.01\n";
+
+fn load(text: &str) -> Result<ScenarioConfig, String> {
+    config::load(text, Path::new("."), &LoadOptions::default()).map_err(|e| e.to_string())
+}
+
+fn sweep(trains: &str, speeds: &str, extra: &str) -> SweepConfig {
+    match load(&format!(
+        "kind = \"sweep\"\n{BRIDGE}[trains]\nnames = [{trains}]\nmodel = \"interaction\"\n[speeds]\n{speeds}\n{extra}"
+    )) {
+        Ok(ScenarioConfig::Sweep(c)) => *c,
+        Ok(_) => panic!("not a sweep"),
+        Err(e) => panic!("{e}"),
+    }
+}
+
+fn passages(c: &SweepConfig) -> Vec<sim::sweep::Passage> {
+    run(
+        c.bridge.basis.as_ref(),
+        &c.bridge.damping,
+        &c.spec,
+        Shard::ALL,
+        &|| true,
+    )
+    .unwrap()
+}
+
+/// Midspan deflection of the simply supported span under P at a (closed form).
+fn midspan_influence(a: f64, p: f64) -> f64 {
+    if !(0.0..=L).contains(&a) {
+        return 0.0;
+    }
+    let a = a.min(L - a);
+    p * a * (3.0 * L * L - 4.0 * a * a) / (48.0 * EI)
+}
+
+#[test]
+fn a_slow_passage_deflects_the_span_like_the_static_influence_line() {
+    // One AVE S-103 car (four 152.06 kN axles, 2.5 m wheelbase, 17.375 m bogie centres) at
+    // 2 m/s (speed parameter v/(2 n0 L) = 0.01) with Hertz contact: the peak midspan deflection
+    // is the closed-form static one (measured 2.9e-4 below it; asserted 2e-3, the size of the
+    // dynamic effect at this speed), and the quasi-static deflection reported for φ' is the
+    // same peak to 2e-3 (measured 8.4e-4: the truncation to 3 modes).
+    let c = sweep(
+        "\"AVE-S103-car\"",
+        "list = [2.0]",
+        "[contact]\nmodel = \"hertz\"\n",
+    );
+    let p = passages(&c);
+    let axles = c.spec.trains[0].axles(9.81).unwrap();
+    let mut peak = 0.0f64;
+    for i in 0..=20_000 {
+        let lead = (L + 20.0) * i as f64 / 20_000.0;
+        let w: f64 = axles
+            .iter()
+            .map(|a| midspan_influence(lead - a.offset, a.load))
+            .sum();
+        peak = peak.max(w);
+    }
+    let (w, stat) = (p[0].peaks.deflection[0], p[0].peaks.static_deflection[0]);
+    println!("interaction {w:.6e} m, quasi-static {stat:.6e} m, closed form {peak:.6e} m");
+    assert!((w / peak - 1.0).abs() < 2e-3, "{w} vs {peak}");
+    assert!((stat / peak - 1.0).abs() < 2e-3, "{stat} vs {peak}");
+}
+
+#[test]
+fn a_passage_equals_the_same_vehicle_bridge_run() {
+    // The sweep's passage at 50 m/s is the vehicle_bridge scenario of the same train starting
+    // with its leading axle at the span's entry, run to the last axle's exit plus 2/n0 of free
+    // vibration: the same peak midspan deflection to round-off.
+    let c = sweep(
+        "\"AVE-S103-car\"",
+        "list = [50.0]",
+        "[contact]\nmodel = \"hertz\"\n",
+    );
+    let p = passages(&c);
+    let n0 = c.first_frequency;
+    let dt = match &c.spec.model {
+        sim::sweep::SweepModel::Interaction(m) => m.trains[0].dt,
+        _ => panic!("interaction"),
+    };
+    let duration = (L + 19.875) / 50.0 + 2.0 / n0;
+    let text = format!(
+        "kind = \"vehicle_bridge\"\n{BRIDGE}[train]\nspeed = 50.0\nposition = 0.0\n[[train.vehicles]]\npreset = \"AVE-S103-car\"\n[contact]\nmodel = \"hertz\"\n[integrator]\nmethod = \"newmark\"\ndt = {dt:e}\nduration = {duration:e}\n"
+    );
+    let Ok(ScenarioConfig::VehicleBridge(v)) = load(&text) else {
+        panic!("vehicle_bridge scenario");
+    };
+    let mut sim = sim::vehicle_bridge::Simulation::with_vehicles(v.scenario, v.vehicles).unwrap();
+    let mut peak = 0.0f64;
+    sim.run(|s| peak = peak.max(s.output_point_response().0.abs()))
+        .unwrap();
+    let w = p[0].peaks.deflection[0];
+    println!("sweep {w:.9e} m, vehicle_bridge {peak:.9e} m");
+    assert!((w / peak - 1.0).abs() < 1e-9, "{w} vs {peak}");
+}
+
+#[test]
+fn trains_without_vehicle_models_are_refused() {
+    let e = match load(&format!(
+        "kind = \"sweep\"\n{BRIDGE}[trains]\nnames = [\"HSLM-A1\"]\nmodel = \"interaction\"\n[speeds]\nlist = [50.0]\n"
+    )) {
+        Err(e) => e,
+        Ok(_) => panic!("HSLM-A1 accepted in the interaction model"),
+    };
+    assert!(
+        e.contains("HSLM-A1") && e.contains("moving_forces") && e.contains("vehicle models"),
+        "{e}"
+    );
+    let e = match load(&format!(
+        "kind = \"sweep\"\n{BRIDGE}[trains]\nnames = [\"AVE-S103-car\"]\n[contact]\nmodel = \"hertz\"\n[speeds]\nlist = [50.0]\n"
+    )) {
+        Err(e) => e,
+        Ok(_) => panic!("[contact] accepted with moving forces"),
+    };
+    assert!(e.contains("[contact]") && e.contains("interaction"), "{e}");
+}
