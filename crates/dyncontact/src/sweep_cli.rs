@@ -330,27 +330,51 @@ fn plot_governing(run_out: &RunOutput, config: &SweepConfig, s: &SweepSummary) -
     else {
         return Ok(());
     };
-    let axles: Vec<beam::Axle> =
-        sim::sweep::train_axles(spec).map_err(|e| anyhow!("{e}"))?[t].clone();
-    let loads =
-        beam::MovingLoads::train(axles, s.checks.governing_speed).map_err(|e| anyhow!("{e}"))?;
-    let mut settings = beam::MovingLoadSettings::new(spec.dt, spec.free_vibration);
-    let steps = (loads.exit_time(config.bridge.basis.length()) + spec.free_vibration) / spec.dt;
-    settings.output_every = ((steps / 20_000.0).ceil() as usize).max(1);
-    let r = beam::simulate_moving_loads(
-        config.bridge.basis.as_ref(),
-        &config.bridge.damping,
-        &loads,
-        &settings,
-        &spec.points[..1],
-    )
-    .map_err(|e| anyhow!("governing time history: {e}"))?;
-    let series = |values: &[f64], scale: f64| -> Vec<(f64, f64)> {
-        r.times
-            .iter()
-            .zip(values)
-            .map(|(&t, &y)| (t, scale * y))
-            .collect()
+    // (t, w, ẅ) at the first output point, recomputed with the sweep's model.
+    let history: Vec<(f64, f64, f64)> = match &spec.model {
+        sim::sweep::SweepModel::Interaction(model) => {
+            let basis = config.bridge.basis.as_ref();
+            let mut shapes = vec![0.0; basis.n_modes()];
+            basis
+                .eval_all(spec.points[0], beam::Derivative::Shape, &mut shapes)
+                .map_err(|e| anyhow!("governing time history: {e}"))?;
+            sim::sweep::interaction::history(
+                model,
+                t,
+                s.checks.governing_speed,
+                &shapes,
+                spec.free_vibration,
+                20_000,
+            )
+            .map_err(|e| anyhow!("governing time history: {e}"))?
+        }
+        sim::sweep::SweepModel::MovingForces => {
+            let axles: Vec<beam::Axle> =
+                sim::sweep::train_axles(spec).map_err(|e| anyhow!("{e}"))?[t].clone();
+            let loads = beam::MovingLoads::train(axles, s.checks.governing_speed)
+                .map_err(|e| anyhow!("{e}"))?;
+            let mut settings = beam::MovingLoadSettings::new(spec.dt, spec.free_vibration);
+            let steps =
+                (loads.exit_time(config.bridge.basis.length()) + spec.free_vibration) / spec.dt;
+            settings.output_every = ((steps / 20_000.0).ceil() as usize).max(1);
+            let r = beam::simulate_moving_loads(
+                config.bridge.basis.as_ref(),
+                &config.bridge.damping,
+                &loads,
+                &settings,
+                &spec.points[..1],
+            )
+            .map_err(|e| anyhow!("governing time history: {e}"))?;
+            r.times
+                .iter()
+                .zip(&r.deflection)
+                .zip(&r.acceleration)
+                .map(|((&t, &w), &a)| (t, w, a))
+                .collect()
+        }
+    };
+    let series = |pick: fn(&(f64, f64, f64)) -> f64, scale: f64| -> Vec<(f64, f64)> {
+        history.iter().map(|h| (h.0, scale * pick(h))).collect()
     };
     plot::panels(
         &run_out.path("governing.png"),
@@ -364,16 +388,13 @@ fn plot_governing(run_out: &RunOutput, config: &SweepConfig, s: &SweepSummary) -
                 ),
                 x_label: "time [s]".into(),
                 y_label: "acceleration [m/s²]".into(),
-                series: vec![plot::Series::new(
-                    "acceleration",
-                    series(&r.acceleration, 1.0),
-                )],
+                series: vec![plot::Series::new("acceleration", series(|h| h.2, 1.0))],
             },
             plot::Panel {
                 title: "deflection".into(),
                 x_label: "time [s]".into(),
                 y_label: "deflection [mm]".into(),
-                series: vec![plot::Series::new("deflection", series(&r.deflection, 1e3))],
+                series: vec![plot::Series::new("deflection", series(|h| h.1, 1e3))],
             },
         ],
     )

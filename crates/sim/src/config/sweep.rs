@@ -256,6 +256,15 @@ pub fn build(file: SweepFile, base: &std::path::Path) -> Result<SweepConfig, Con
             speeds.iter().copied().fold(0.0, f64::max),
         )?)),
     };
+    if let SweepModel::Interaction(m) = &model {
+        let dts: Vec<String> = m.trains.iter().map(|t| format!("{:.3e}", t.dt)).collect();
+        notes.push(format!(
+            "interaction model: each train's vehicles coupled to the bridge ({:?} contact, {}), Δt = {} s per train",
+            m.contact,
+            m.integrator.name(),
+            dts.join(", ")
+        ));
+    }
     let spec = SweepSpec {
         trains,
         speeds,

@@ -74,6 +74,55 @@ pub fn passage(
     point_shapes: &[f64],
     free_vibration: f64,
 ) -> Result<PassagePeaks, VehicleBridgeError> {
+    passage_with(model, train, speed, point_shapes, free_vibration, |_, _| {})
+}
+
+/// The time history (t \[s\], w \[m\], ẅ \[m/s²\]) of the passage at the first point of
+/// `point_shapes` (as [`passage`]), at most `samples` + 1 values, evenly spaced in steps.
+pub fn history(
+    model: &InteractionModel,
+    train: usize,
+    speed: f64,
+    point_shapes: &[f64],
+    free_vibration: f64,
+    samples: usize,
+) -> Result<Vec<(f64, f64, f64)>, VehicleBridgeError> {
+    let m = model.basis.n_modes();
+    let vehicles = &model.trains[train];
+    let last = vehicles
+        .wheels
+        .iter()
+        .map(|w| w.position)
+        .fold(0.0f64, f64::min);
+    let steps = ((model.basis.length() - last) / speed + free_vibration) / vehicles.dt;
+    let every = ((steps / samples.max(1) as f64).ceil() as usize).max(1);
+    let mut out = Vec::new();
+    let mut step = 0usize;
+    passage_with(
+        model,
+        train,
+        speed,
+        &point_shapes[..m],
+        free_vibration,
+        |t, wa| {
+            if step.is_multiple_of(every) {
+                out.push((t, wa[0].0, wa[0].1));
+            }
+            step += 1;
+        },
+    )?;
+    Ok(out)
+}
+
+/// [`passage`], calling `observe(t, [(w, ẅ) per point])` after every step.
+fn passage_with(
+    model: &InteractionModel,
+    train: usize,
+    speed: f64,
+    point_shapes: &[f64],
+    free_vibration: f64,
+    mut observe: impl FnMut(f64, &[(f64, f64)]),
+) -> Result<PassagePeaks, VehicleBridgeError> {
     let vehicles = &model.trains[train];
     let length = model.basis.length();
     let m = model.basis.n_modes();
@@ -105,6 +154,7 @@ pub fn passage(
         static_deflection: Vec::new(),
         steps: 0,
     };
+    let mut values = vec![(0.0, 0.0); points];
     let summary = sim.run(|s| {
         let (q, a) = (&s.state()[..m], &s.acceleration()[..m]);
         for p in 0..points {
@@ -116,7 +166,9 @@ pub fn passage(
             }
             peaks.deflection[p] = peaks.deflection[p].max(w.abs());
             peaks.acceleration[p] = peaks.acceleration[p].max(acc.abs());
+            values[p] = (w, acc);
         }
+        observe(s.t(), &values);
     })?;
     peaks.steps = summary.solver.steps;
     Ok(peaks)
