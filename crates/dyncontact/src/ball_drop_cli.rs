@@ -144,14 +144,14 @@ fn write_plot(path: &Path, r: &BallDropResult) -> Result<()> {
             title: "height of the lowest point".into(),
             x_label: "t [s]".into(),
             y_label: "z [m]".into(),
-            series: vec![Series::new("z", z)],
+            series: vec![Series::new("height of the lowest point", z)],
         },
         Panel {
             title: "contact force".into(),
             x_label: "t [s]".into(),
             y_label: "F [N]".into(),
             series: vec![
-                Series::new("F", f),
+                Series::new("contact force", f),
                 Series::new(
                     "peak of each impact (widened to be visible)",
                     peak_markers(r),
@@ -176,7 +176,7 @@ fn write_plot(path: &Path, r: &BallDropResult) -> Result<()> {
             x_label: "t − t₀ [µs]".into(),
             y_label: "F [N]".into(),
             series: vec![
-                Series::new("simulated", zoom),
+                Series::new("simulated contact force", zoom),
                 Series::new("closed-form F* over the closed-form t_c", hertz),
             ],
         });

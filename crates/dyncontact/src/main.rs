@@ -59,9 +59,11 @@ enum Command {
         /// Print the JSON summary on standard output.
         #[arg(long)]
         json: bool,
-        /// Override the scenario's `[integrator] method` (ball_drop: euler, rk4, dopri5,
+        /// Override the scenario's `[integrator] method`. ball_drop: euler, rk4, dopri5,
         /// backward_euler, radau5, bdf, adams, verlet, leapfrog, newmark, hht,
-        /// generalized_alpha).
+        /// generalized_alpha. vehicle_bridge: newmark (trapezoidal), linear_acceleration, hht,
+        /// generalized_alpha, backward_euler, radau5. moving_load: exact or a structural
+        /// method (newmark, hht, generalized_alpha, backward_euler, ...).
         #[arg(long)]
         integrator: Option<String>,
         /// Largest estimated work of the run in floating-point operations (default 1e16, about 1e9 per second;
@@ -98,13 +100,13 @@ enum Command {
         /// Case file (TOML) with \[friction\] mu.
         file: PathBuf,
         /// Sweep the longitudinal creepage: start:stop:count.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         creepage_x: Option<String>,
         /// Sweep the lateral creepage: start:stop:count.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         creepage_y: Option<String>,
         /// Sweep the spin [1/m]: start:stop:count.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         spin: Option<String>,
         /// Output directory for creep_curve.csv, creep_curve.json, creep_curve.png.
         #[arg(long, default_value = "out")]
@@ -194,8 +196,32 @@ fn restore_default_sigpipe() {
     }
 }
 
+/// The name a scenario file goes by in plot headings: its file name.
+fn scenario_name(file: &Path) -> String {
+    file.file_name().map_or_else(
+        || file.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    )
+}
+
 fn run_cli() -> Result<()> {
     let cli = Cli::parse();
+    match &cli.command {
+        Command::Run { file: None, .. } => {
+            plot::set_scenario(format!("built-in default ({DEFAULT_SCENARIO_PATH})"))
+        }
+        Command::Run { file: Some(f), .. }
+        | Command::Contact { file: f, .. }
+        | Command::Modes { file: f, .. }
+        | Command::CreepCurve { file: f, .. }
+        | Command::Sweep { file: f, .. } => plot::set_scenario(scenario_name(f)),
+        Command::SweepMerge { dirs, .. } => plot::set_scenario(format!(
+            "merged shards of {}",
+            dirs.first()
+                .map_or_else(String::new, |d| d.display().to_string())
+        )),
+        Command::Bench { .. } => {}
+    }
     match cli.command {
         Command::Run {
             file,
@@ -317,10 +343,12 @@ fn run_contact(case: contact_case::PreparedCase, json: bool, out: Option<&Path>)
         contact_case::write_outputs(&run_out, &outcome)?;
         run_out.commit()?;
         if !json {
-            println!(
-                "wrote {}/pressure.csv, pressure.png, pressure_profile.png, summary.json",
-                dir.display()
-            );
+            let written: Vec<&str> = contact_case::OUTPUT_SET
+                .iter()
+                .copied()
+                .filter(|name| dir.join(name).exists())
+                .collect();
+            println!("wrote {}/{}", dir.display(), written.join(", "));
         }
     }
     if !outcome.summary.converged {

@@ -414,7 +414,7 @@ fn plot_sweep(
         "envelope",
         along(&s.envelope.max_acceleration, 1.0),
     ));
-    acc_series.push(plot::Series::new(
+    acc_series.push(plot::Series::reference(
         format!(
             "limit {} m/s² ({})",
             s.checks.acceleration_limit, s.checks.track
@@ -522,7 +522,7 @@ fn plot_governing(run_out: &RunOutput, config: &SweepConfig, s: &SweepSummary) -
                 )],
             },
             plot::Panel {
-                title: "deflection".into(),
+                title: format!("deck deflection at x = {} m", spec.points[0]),
                 x_label: "time [s]".into(),
                 y_label: "deflection [mm]".into(),
                 series: vec![plot::Series::new("deflection", series(&r.deflection, 1e3))],

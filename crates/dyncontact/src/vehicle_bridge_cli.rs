@@ -139,6 +139,9 @@ pub struct Outcome {
     /// The recorded rows, thinned to at most [`vehicle_bridge_output::PLOT_ROWS`] (for plots).
     rows: Vec<Row>,
     snapshots: Vec<(f64, Vec<(f64, f64)>)>,
+    /// The output point's position and the bridge's length \[m\] (for the plots).
+    output_point: f64,
+    bridge_length: f64,
     /// The train on the bridge at a few instants (trains only).
     train_pictures: Vec<vehicle_bridge_output::TrainPicture>,
     /// The error of the step that failed, when one did (the outputs up to it are written).
@@ -368,6 +371,8 @@ pub fn simulate_full(
         summary,
         rows,
         snapshots: snaps,
+        output_point: sim.scenario().output_point,
+        bridge_length: length,
         train_pictures: pictures,
         failure,
     })
@@ -444,7 +449,17 @@ pub fn run(config: VehicleBridgeConfig, out: &Path, json: bool) -> Result<()> {
         Some(&run_out.path("timeseries.csv")),
     )?;
     output::write_json(&run_out.path("summary.json"), &outcome.summary)?;
-    vehicle_bridge_output::write_plots(&run_out, &outcome.rows, &outcome.snapshots)?;
+    vehicle_bridge_output::write_plots(
+        &run_out,
+        &outcome.rows,
+        &outcome.snapshots,
+        &vehicle_bridge_output::PlotContext {
+            output_point: outcome.output_point,
+            bridge_length: outcome.bridge_length,
+            static_loads: &outcome.summary.vehicle.static_wheel_loads,
+            contact_model: &outcome.summary.contact.model,
+        },
+    )?;
     if !outcome.train_pictures.is_empty() {
         vehicle_bridge_output::write_train_pictures(&run_out, &outcome.train_pictures)?;
     }
@@ -457,15 +472,20 @@ pub fn run(config: VehicleBridgeConfig, out: &Path, json: bool) -> Result<()> {
         println!("{}", output::json_text(&outcome.summary)?);
     } else {
         print_summary(&outcome.summary);
-        println!(
-            "wrote {}/{}, summary.json, contact_force.png, midspan.png, vehicle.png, pressure.png",
-            out.display(),
-            if completed {
-                "timeseries.csv"
-            } else {
-                "timeseries.partial.csv"
-            }
-        );
+        // The files this run wrote (pressure.png only with contact pressure, traction.png
+        // only with traction, train.png only for trains).
+        let written: Vec<String> = OUTPUT_SET
+            .iter()
+            .map(|name| {
+                if !completed && *name == "timeseries.csv" {
+                    output::partial_name(name)
+                } else {
+                    name.to_string()
+                }
+            })
+            .filter(|name| out.join(name).exists())
+            .collect();
+        println!("wrote {}/{}", out.display(), written.join(", "));
     }
     if let Some(e) = outcome.failure {
         return Err(e.context("the outputs up to the failed step are written (completed = false)"));

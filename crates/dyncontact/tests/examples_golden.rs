@@ -12,7 +12,7 @@ mod support;
 
 use std::collections::BTreeSet;
 
-use support::{dyncontact, example, num};
+use support::{PLOT_REPORT_ENV, check_plot_report, dyncontact, dyncontact_env, example, num};
 
 /// One quoted number: JSON pointer, quoted value, allowed absolute deviation, where quoted.
 struct Quote {
@@ -48,19 +48,22 @@ fn full(pointer: &'static str, value: f64) -> Quote {
     }
 }
 
-/// Run `examples/FILE` with `args` (the file is inserted after the first argument), `--json`,
-/// and check every quote.
+/// Run `examples/FILE` with `args` (the file is inserted after the first argument), `--json`
+/// and an output directory, check every quote, and check every plot it drew
+/// (`support::check_plot_report`: data inside the axes, legends with drawn lines, equal
+/// scales of maps, ...).
 fn check(file: &str, args: &[&str], quotes: &[Quote], source: &str) {
     let dir = tempfile::tempdir().unwrap();
     let path = example(file);
     let out_dir = dir.path().join("out");
     let mut argv: Vec<&str> = vec![args[0], path.to_str().unwrap()];
     argv.extend_from_slice(&args[1..]);
-    if args[0] == "run" || args[0] == "creep-curve" || args[0] == "sweep" {
+    if ["run", "creep-curve", "sweep", "contact", "modes"].contains(&args[0]) {
         argv.extend(["--out", out_dir.to_str().unwrap()]);
     }
     argv.push("--json");
-    let o = dyncontact(&argv);
+    let report = dir.path().join("plots.jsonl");
+    let o = dyncontact_env(&argv, &[(PLOT_REPORT_ENV, report.as_os_str())]);
     assert!(
         o.status.success(),
         "{file}: {}",
@@ -78,6 +81,8 @@ fn check(file: &str, args: &[&str], quotes: &[Quote], source: &str) {
         }
     }
     assert!(failures.is_empty(), "{file}:\n{}", failures.join("\n"));
+    let figures = check_plot_report(&report, &out_dir, file);
+    assert!(figures > 0, "{file}: no plot drawn");
 }
 
 /// Every example file is checked by a test in this file (a new example needs its golden).

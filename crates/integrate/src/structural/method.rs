@@ -144,7 +144,11 @@ impl StructuralMethod {
             _ => {
                 return Err(invalid(
                     "method",
-                    format!("unknown structural method `{name}`"),
+                    format!(
+                        "unknown structural method `{name}` (known: newmark, average_acceleration \
+                         or trapezoidal, linear_acceleration, central_difference, hht, \
+                         generalized_alpha, verlet, leapfrog, backward_euler)"
+                    ),
                 ));
             }
         };
