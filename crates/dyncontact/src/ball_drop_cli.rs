@@ -232,7 +232,7 @@ fn bench_run(scenario: &BallDrop, reference: &HertzImpact) -> Result<(f64, BallD
     Ok((err, r))
 }
 
-/// `dyncontact bench integrators`: the brief's drop (steel ball, 0.1 m, 1 s, 4 bounces) with
+/// `dyncontact bench integrators`: the reference drop (references.md §C4.10) (steel ball, 0.1 m, 1 s, 4 bounces) with
 /// every method, at the loosest tolerance (adaptive) or largest step (fixed) that gives a
 /// relative error ≤ `target` in the first impact's peak force against the closed form
 /// `(2/5)Kδ*^{5/2} = ½mv² + mgδ*`, `F* = Kδ*^{3/2}`.
@@ -359,7 +359,7 @@ pub fn bench_integrators(target: f64) -> Result<()> {
     if let (Some(f), Some(n)) = (fastest, multistep) {
         let (lo, hi) = (8e-6 * n as f64, 23e-6 * n as f64);
         println!(
-            "fastest: {} in {:.3} ms. ESTIMATE (not a measurement of scipy): LSODA at 8–23 µs/step (the issue's quoted cost) over {n} steps (our variable-order bdf/adams step count at this accuracy) ≈ {:.1}–{:.1} ms, i.e. {:.0}–{:.0}× the fastest method here.",
+            "fastest: {} in {:.3} ms. ESTIMATE (not a measurement of scipy): LSODA at 8–23 µs/step (an assumed cost, docs/references.md §R5.2) over {n} steps (our variable-order bdf/adams step count at this accuracy) ≈ {:.1}–{:.1} ms, i.e. {:.0}–{:.0}× the fastest method here.",
             f.method,
             1e3 * f.wall,
             1e3 * lo,

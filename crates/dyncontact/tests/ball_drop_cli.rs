@@ -5,7 +5,7 @@ mod support;
 
 use support::{dyncontact, write};
 
-/// The brief's scenario, shortened to 0.3 s (one impact at t = √(2h/g) = 0.1428 s).
+/// The reference drop (references.md §C4.10), shortened to 0.3 s (one impact at t = √(2h/g) = 0.1428 s).
 const VALID: &str = r#"
 kind = "ball_drop"
 duration = 0.3

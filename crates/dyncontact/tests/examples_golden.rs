@@ -106,6 +106,32 @@ fn every_example_has_a_golden_test() {
     );
 }
 
+/// Every example names its `kind`, so `dyncontact run FILE` accepts each of them (the contact
+/// cases, tangential ones included, also run with `dyncontact contact`).
+#[test]
+fn every_example_names_its_kind() {
+    let kinds = [
+        "ball_drop",
+        "contact",
+        "moving_load",
+        "sweep",
+        "vehicle_bridge",
+    ];
+    for entry in std::fs::read_dir(example("")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "toml") {
+            continue;
+        }
+        let table: toml::Table = toml::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        let kind = table.get("kind").and_then(|k| k.as_str());
+        assert!(
+            kind.is_some_and(|k| kinds.contains(&k)),
+            "{}: kind = {kind:?}",
+            path.display()
+        );
+    }
+}
+
 /// The built-in default of `dyncontact run` is the example file itself (one copy).
 #[test]
 fn the_default_scenario_is_the_example() {

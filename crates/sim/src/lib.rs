@@ -5,7 +5,7 @@
 //!   m z'' = F_n(δ) − m g (issue "time integration library and the ball drop");
 //! * [`vehicle_bridge`]: wheels (moving force, moving mass, quarter car, several axles) over a
 //!   modal Euler–Bernoulli bridge with Hertz or boundary-element contact, coupled every time
-//!   step (Picard, the seed's quasi-Newton/Sherman–Morrison, Woodbury, Newton);
+//!   step (Picard, quasi-Newton/Sherman–Morrison (references.md §D4.4), Woodbury, Newton);
 //! * [`config`]: scenario files (TOML text) parsed once into these types, with the
 //!   numerical defaults and the range checks of every key.
 
