@@ -56,7 +56,7 @@ pub fn run(prepared: BallDropConfig, out: &Path, json: bool) -> Result<()> {
             .iter()
             .map(|s| vec![s.t, s.z, s.v, s.a, s.approach, s.force, s.energy]),
     )?;
-    output::write_json(&run_out.path("summary.json"), &summary)?;
+    output::write_summary(&run_out.path("summary.json"), &summary)?;
     if prepared.plot {
         write_plot(&run_out.path("ball_drop.png"), &result)?;
     }

@@ -586,7 +586,7 @@ pub fn write_outputs(dir: &RunOutput, outcome: &CaseOutcome) -> Result<()> {
     if let Some(t) = &outcome.tangential {
         write_tangential_outputs(dir, t)?;
     }
-    output::write_json(&dir.path("summary.json"), &outcome.summary)
+    output::write_summary(&dir.path("summary.json"), &outcome.summary)
 }
 
 /// State code of an element in outputs: 0 exterior, 1 adhesion, 2 slip.

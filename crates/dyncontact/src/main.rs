@@ -39,8 +39,9 @@ const DEFAULT_SCENARIO_PATH: &str = "examples/vehicle_bridge_default.toml";
     version,
     about = "Contact in dynamical simulations: elastic half-space contact, time integrators, bridge dynamics",
     after_help = "Scenario kinds of `run`: ball_drop, contact, moving_load, sweep, vehicle_bridge.\n\
-Examples of each in examples/ (copy one to start your own); every key is documented in docs/*.md\n\
-(README.md lists the pages). SI units everywhere. Exit codes: 0 ok, 1 run failed or interrupted, 2 bad input."
+Examples of each in examples/ (copy one, or `dyncontact init KIND > my.toml`, to start your own);\n\
+every key is documented in docs/*.md (README.md lists the pages). SI units everywhere.\n\
+Exit codes: 0 ok, 1 run failed or interrupted, 2 bad input."
 )]
 struct Cli {
     #[command(subcommand)]
@@ -59,11 +60,11 @@ enum Command {
         /// Print the JSON summary on standard output.
         #[arg(long)]
         json: bool,
-        /// Override the scenario's `[integrator] method`. ball_drop: euler, rk4, dopri5,
+        /// Override the `[integrator] method` of a ball_drop scenario: euler, rk4, dopri5,
         /// backward_euler, radau5, bdf, adams, verlet, leapfrog, newmark, hht,
-        /// generalized_alpha. vehicle_bridge: newmark (trapezoidal), linear_acceleration, hht,
-        /// generalized_alpha, backward_euler, radau5. moving_load: exact or a structural
-        /// method (newmark, hht, generalized_alpha, backward_euler, ...).
+        /// generalized_alpha. Other kinds set it in the file: vehicle_bridge newmark
+        /// (trapezoidal), linear_acceleration, hht, generalized_alpha, backward_euler, radau5;
+        /// moving_load exact or a structural method (docs/integrators.md).
         #[arg(long)]
         integrator: Option<String>,
         /// Largest estimated work of the run in floating-point operations (default 1e16, about 1e9 per second;
@@ -143,6 +144,15 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Write a commented template scenario of one kind (a copy of its example in examples/)
+    /// to start your own: `dyncontact init vehicle_bridge > my.toml`.
+    Init {
+        /// Scenario kind: ball_drop, contact, moving_load, sweep, vehicle_bridge.
+        kind: String,
+        /// Write the template to this file (refused if it exists) instead of standard output.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
     /// Benchmarks: print a table of timings.
     Bench {
         /// What to benchmark.
@@ -215,6 +225,7 @@ fn run_cli() -> Result<()> {
         | Command::Modes { file: f, .. }
         | Command::CreepCurve { file: f, .. }
         | Command::Sweep { file: f, .. } => plot::set_scenario(scenario_name(f)),
+        Command::Init { .. } => {}
         Command::SweepMerge { dirs, .. } => plot::set_scenario(format!(
             "merged shards of {}",
             dirs.first()
@@ -231,7 +242,19 @@ fn run_cli() -> Result<()> {
             max_work,
         } => run_scenario(file.as_deref(), &out, json, integrator.as_deref(), max_work),
         Command::Contact { file, json, out } => {
-            let case = contact_case::parse(&read(&file)?, base_dir(&file)).map_err(bad_input)?;
+            let text = read(&file)?;
+            output::set_input(scenario_name(&file), text.clone());
+            if let Ok(table) = text.parse::<toml::Table>()
+                && let Some(kind) = table.get("kind").and_then(|k| k.as_str())
+                && kind != "contact"
+            {
+                return Err(bad_input(anyhow::anyhow!(
+                    "{} is a {kind} scenario (kind = \"{kind}\"), not a contact case: use `dyncontact run {}`",
+                    file.display(),
+                    file.display()
+                )));
+            }
+            let case = contact_case::parse(&text, base_dir(&file)).map_err(bad_input)?;
             run_contact(case, json, out.as_deref())
         }
         Command::Modes { file, json, out } => modes_cli::run(&read(&file)?, json, out.as_deref()),
@@ -255,6 +278,7 @@ fn run_cli() -> Result<()> {
                 None => sim::sweep::Shard::ALL,
             };
             let text = read(&file)?;
+            output::set_input(scenario_name(&file), text.clone());
             match sim::config::load(&text, base_dir(&file), &Default::default())
                 .map_err(|e| bad_input(e.into()))?
             {
@@ -269,6 +293,7 @@ fn run_cli() -> Result<()> {
             }
         }
         Command::SweepMerge { dirs, out, json } => sweep_cli::merge(&dirs, &out, json),
+        Command::Init { kind, out } => init(&kind, out.as_deref()),
         Command::CreepCurve {
             file,
             creepage_x,
@@ -288,6 +313,68 @@ fn run_cli() -> Result<()> {
             json,
         ),
     }
+}
+
+/// The template of each scenario kind: its example file (commented, tested by
+/// `tests/examples_golden.rs`).
+const TEMPLATES: [(&str, &str, &str); 5] = [
+    (
+        "ball_drop",
+        "examples/ball_drop_steel.toml",
+        include_str!("../../../examples/ball_drop_steel.toml"),
+    ),
+    (
+        "contact",
+        "examples/hertz_sphere.toml",
+        include_str!("../../../examples/hertz_sphere.toml"),
+    ),
+    (
+        "moving_load",
+        "examples/moving_load_fryba.toml",
+        include_str!("../../../examples/moving_load_fryba.toml"),
+    ),
+    (
+        "sweep",
+        "examples/sweep_hslm.toml",
+        include_str!("../../../examples/sweep_hslm.toml"),
+    ),
+    ("vehicle_bridge", DEFAULT_SCENARIO_PATH, DEFAULT_SCENARIO),
+];
+
+/// `dyncontact init KIND [--out FILE]`.
+fn init(kind: &str, out: Option<&Path>) -> Result<()> {
+    let Some((_, source, text)) = TEMPLATES.iter().find(|(k, _, _)| *k == kind) else {
+        let kinds: Vec<&str> = TEMPLATES.iter().map(|t| t.0).collect();
+        return Err(bad_input(anyhow::anyhow!(
+            "init: unknown scenario kind \"{kind}\" (known: {})",
+            kinds.join(", ")
+        )));
+    };
+    let header = format!(
+        "# Template for kind = \"{kind}\", a copy of {source}. Edit the values (SI units);\n\
+         # every key is documented in docs/ (README.md lists the pages). Run it with\n\
+         # `dyncontact run FILE --out DIR`.\n"
+    );
+    match out {
+        None => print!("{header}{text}"),
+        Some(path) => {
+            if path.exists() {
+                return Err(bad_input(anyhow::anyhow!(
+                    "init: {} exists; not overwritten",
+                    path.display()
+                )));
+            }
+            std::fs::write(path, format!("{header}{text}"))
+                .with_context(|| format!("cannot write {}", path.display()))
+                .map_err(bad_input)?;
+            eprintln!(
+                "wrote {} (kind = \"{kind}\"); run it with `dyncontact run {} --out DIR`",
+                path.display(),
+                path.display()
+            );
+        }
+    }
+    Ok(())
 }
 
 fn read(path: &Path) -> Result<String> {
@@ -314,6 +401,13 @@ fn run_scenario(
             (DEFAULT_SCENARIO.to_string(), PathBuf::from("."))
         }
     };
+    output::set_input(
+        file.map_or_else(
+            || format!("built-in default ({DEFAULT_SCENARIO_PATH})"),
+            scenario_name,
+        ),
+        text.clone(),
+    );
     let options = sim::config::LoadOptions {
         integrator: integrator.map(str::to_string),
         max_work,

@@ -52,12 +52,12 @@ pub fn summary(b: &Bridge) -> ModesSummary {
 pub fn print_table(s: &ModesSummary) {
     println!("{}", s.bridge);
     println!(
-        "{:>5} {:>22} {:>16} {:>14}",
+        "{:>5} {:>12} {:>16} {:>14}",
         "n", "beta L", "omega [rad/s]", "f [Hz]"
     );
     for m in &s.modes {
         println!(
-            "{:>5} {:>22.16} {:>16.6} {:>14.6}",
+            "{:>5} {:>12.8} {:>16.6} {:>14.6}",
             m.n, m.beta_l, m.omega, m.frequency
         );
     }

@@ -93,7 +93,7 @@ pub fn run(config: MovingLoadConfig, out: &Path, json: bool) -> Result<()> {
     let summary = summarise(&bridge, &loads, &response, &name, dt, wall)?;
     write_timeseries(&run_out, &loads, &response)?;
     plot_outputs(&run_out, &loads, &response, &summary)?;
-    output::write_json(&run_out.path("summary.json"), &summary)?;
+    output::write_summary(&run_out.path("summary.json"), &summary)?;
     if !summary.completed {
         run_out.mark_partial("timeseries.csv")?;
     }

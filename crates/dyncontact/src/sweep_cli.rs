@@ -51,6 +51,9 @@ struct SummaryFile<'a> {
 #[derive(Debug, Serialize, Deserialize)]
 struct ShardFile {
     scenario: String,
+    /// The scenario file's name (for the `"input"` echo of the merged summary).
+    #[serde(default)]
+    scenario_file: Option<String>,
     /// The directory relative paths in the scenario (train files) are resolved against.
     base: PathBuf,
     shard: [usize; 2],
@@ -105,6 +108,7 @@ pub fn run(
     if shard != Shard::ALL {
         let file = ShardFile {
             scenario: scenario.to_string(),
+            scenario_file: output::input_name(),
             base: base.canonicalize().unwrap_or_else(|_| base.to_path_buf()),
             shard: [shard.index, shard.count],
             passages: passages.iter().map(encode).collect(),
@@ -169,6 +173,14 @@ pub fn merge(dirs: &[PathBuf], out: &Path, json: bool) -> Result<()> {
         )));
     }
     let base = shards[0].1.base.clone();
+    output::set_input(
+        shards[0]
+            .1
+            .scenario_file
+            .clone()
+            .unwrap_or_else(|| "the shards' scenario".to_string()),
+        scenario.clone(),
+    );
     let config = match sim::config::load(&scenario, &base, &Default::default())
         .map_err(|e| bad_input(e.into()))?
     {
@@ -285,7 +297,7 @@ fn finish(
         notes: &config.notes,
         wall_time_s: wall,
     };
-    output::write_json(&run_out.path("summary.json"), &file)?;
+    output::write_summary(&run_out.path("summary.json"), &file)?;
     write_csv(&run_out, spec, passages)?;
     plot_sweep(&run_out, config, &summary, passages)?;
     run_out.commit()?;

@@ -378,6 +378,15 @@ pub fn simulate_full(
     })
 }
 
+/// "1 step", "2 steps": `n` and the noun, plural when n ≠ 1.
+fn plural(n: usize, noun: &str) -> String {
+    if n == 1 {
+        format!("{n} {noun}")
+    } else {
+        format!("{n} {noun}s")
+    }
+}
+
 /// Prints the readable summary.
 pub fn print_summary(s: &Summary) {
     println!(
@@ -392,13 +401,14 @@ pub fn print_summary(s: &Summary) {
         println!("  dynamic amplification {d:.4}");
     }
     println!(
-        "  contact ({}): force {:.1} … {:.1} N, {} loss-of-contact events{}",
+        "  contact ({}): force {:.1} … {:.1} N, {}{}",
         s.contact.model,
         s.contact.min_force,
         s.contact.max_force,
-        s.contact.loss_of_contact_events,
+        plural(s.contact.loss_of_contact_events, "loss-of-contact event"),
         s.contact
             .max_pressure
+            .filter(|p| *p > 0.0)
             .map(|p| format!(", max pressure {:.1} MPa", 1e-6 * p))
             .unwrap_or_default()
     );
@@ -406,15 +416,28 @@ pub fn print_summary(s: &Summary) {
         "  vehicle: max body acceleration {:.4} m/s²",
         s.vehicle.max_body_acceleration
     );
+    // Radau5 counts the steps its error control rejected; the structural methods count step
+    // attempts whose coupling failed (each retried with half the step).
+    let failed = if s.solver.method == "radau5_newton" {
+        plural(s.solver.failed_steps, "rejected step")
+    } else {
+        plural(s.solver.failed_steps, "failed step attempt")
+    };
     println!(
-        "  solver {} / {}: {} steps, {:.2} iterations/step (max {}), {:.2} contact-solver iterations/step, {} failed steps",
+        "  solver {} / {}: {}, {:.2} iterations/step (max {}){}, {failed}",
         s.solver.method,
         s.solver.integrator,
-        s.solver.steps,
+        plural(s.solver.steps, "step"),
         s.solver.mean_iterations_per_step,
         s.solver.max_iterations_per_step,
-        s.solver.mean_contact_iterations_per_step,
-        s.solver.failed_steps
+        if s.contact.model == "bem" {
+            format!(
+                ", {:.2} contact-solver iterations/step",
+                s.solver.mean_contact_iterations_per_step
+            )
+        } else {
+            String::new()
+        }
     );
     if let Some(t) = &s.traction {
         println!(
@@ -448,7 +471,7 @@ pub fn run(config: VehicleBridgeConfig, out: &Path, json: bool) -> Result<()> {
         snapshots,
         Some(&run_out.path("timeseries.csv")),
     )?;
-    output::write_json(&run_out.path("summary.json"), &outcome.summary)?;
+    output::write_summary(&run_out.path("summary.json"), &outcome.summary)?;
     vehicle_bridge_output::write_plots(
         &run_out,
         &outcome.rows,

@@ -215,7 +215,9 @@ fn fmt_num(v: f64) -> String {
 }
 
 /// contact_force.png, midspan.png, vehicle.png, traction.png (runs with traction) and
-/// pressure.png (when a pressure snapshot has contact pressure), all against time t.
+/// pressure.png (when a pressure snapshot has contact pressure). One abscissa for the run:
+/// position along the track — each wheel's own position for its contact force (so features of
+/// the track line up across wheels), the leading wheel's position (x₀ + V t) for the rest.
 pub fn write_plots(
     dir: &RunOutput,
     rows: &[Row],
@@ -237,12 +239,17 @@ pub fn write_plots(
             })
             .collect()
     };
-    let (t0, t1) = (
-        rows.first().map_or(0.0, |r| r.t),
-        rows.last().map_or(0.0, |r| r.t),
-    );
+    // The abscissa of the time series: the leading wheel's position [m].
+    let lead = |r: &Row| r.wheels.first().map_or(r.t, |w| w.position);
+    let x_lead = "position of the leading wheel (wheel 0) [m]";
+    let positions = rows
+        .iter()
+        .flat_map(|r| r.wheels.iter().map(|w| w.position));
+    let (x0, x1) = positions.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+        (a.min(x), b.max(x))
+    });
     let mut force = wheel_series(
-        &|r, k| (r.t, 1e-3 * r.wheels[k].contact.force),
+        &|r, k| (r.wheels[k].position, 1e-3 * r.wheels[k].contact.force),
         "contact force, wheel",
     );
     // The static load line(s): one per distinct static load.
@@ -252,17 +259,17 @@ pub fn write_plots(
     for w in &loads {
         force.push(Series::reference(
             format!("static wheel load {:.2} kN", 1e-3 * w),
-            vec![(t0, 1e-3 * w), (t1, 1e-3 * w)],
+            vec![(x0, 1e-3 * w), (x1, 1e-3 * w)],
         ));
     }
     plot::panels(
         &dir.path("contact_force.png"),
         &[Panel {
             title: format!(
-                "Wheel–rail contact force ({} contact) against time",
+                "Wheel–rail contact force ({} contact) against each wheel's position",
                 ctx.contact_model
             ),
-            x_label: "t [s]".into(),
+            x_label: "position of the wheel along the track [m]".into(),
             y_label: "contact force [kN]".into(),
             series: force,
         }],
@@ -273,20 +280,20 @@ pub fn write_plots(
         &[
             Panel {
                 title: format!("Bridge deflection at the output point ({point})"),
-                x_label: "t [s]".into(),
+                x_label: x_lead.into(),
                 y_label: "deflection, down positive [mm]".into(),
                 series: vec![Series::new(
                     "deflection",
-                    rows.iter().map(|r| (r.t, 1e3 * r.midspan.0)).collect(),
+                    rows.iter().map(|r| (lead(r), 1e3 * r.midspan.0)).collect(),
                 )],
             },
             Panel {
                 title: format!("Bridge acceleration at the output point ({point})"),
-                x_label: "t [s]".into(),
+                x_label: x_lead.into(),
                 y_label: "acceleration [m/s²]".into(),
                 series: vec![Series::new(
                     "acceleration",
-                    rows.iter().map(|r| (r.t, r.midspan.2)).collect(),
+                    rows.iter().map(|r| (lead(r), r.midspan.2)).collect(),
                 )],
             },
         ],
@@ -302,34 +309,34 @@ pub fn write_plots(
         &[
             Panel {
                 title: "Car body displacement from its static position (down positive)".into(),
-                x_label: "t [s]".into(),
+                x_label: x_lead.into(),
                 y_label: "body displacement [mm]".into(),
                 series: wheel_series(
                     &|r, k| {
                         let z = r.wheels[k].body_displacement;
-                        (r.t, 1e3 * (z - rel(k, &|w| w.body_displacement)))
+                        (lead(r), 1e3 * (z - rel(k, &|w| w.body_displacement)))
                     },
                     "body on wheel",
                 ),
             },
             Panel {
                 title: "Wheel displacement from its static position (down positive)".into(),
-                x_label: "t [s]".into(),
+                x_label: x_lead.into(),
                 y_label: "wheel displacement [mm]".into(),
                 series: wheel_series(
                     &|r, k| {
                         let z = r.wheels[k].wheel_displacement;
-                        (r.t, 1e3 * (z - rel(k, &|w| w.wheel_displacement)))
+                        (lead(r), 1e3 * (z - rel(k, &|w| w.wheel_displacement)))
                     },
                     "wheel",
                 ),
             },
             Panel {
                 title: "Car body acceleration".into(),
-                x_label: "t [s]".into(),
+                x_label: x_lead.into(),
                 y_label: "body acceleration [m/s²]".into(),
                 series: wheel_series(
-                    &|r, k| (r.t, r.wheels[k].body_acceleration),
+                    &|r, k| (lead(r), r.wheels[k].body_acceleration),
                     "body on wheel",
                 ),
             },
@@ -346,7 +353,7 @@ pub fn write_plots(
                             format!("{name}, wheel {k}")
                         },
                         rows.iter()
-                            .map(|r| (r.t, r.traction.get(k).map_or(f64::NAN, f)))
+                            .map(|r| (lead(r), r.traction.get(k).map_or(f64::NAN, f)))
                             .collect(),
                     )
                 })
@@ -357,19 +364,19 @@ pub fn write_plots(
             &[
                 Panel {
                     title: "Longitudinal creep force on the wheel (> 0 forward)".into(),
-                    x_label: "t [s]".into(),
+                    x_label: x_lead.into(),
                     y_label: "F_x [kN]".into(),
                     series: per_wheel(&|t| 1e-3 * t.longitudinal_force, "F_x"),
                 },
                 Panel {
                     title: "Longitudinal creepage ξ = (V − ωR)/V".into(),
-                    x_label: "t [s]".into(),
+                    x_label: x_lead.into(),
                     y_label: "creepage ξ [-]".into(),
                     series: per_wheel(&|t| t.creepage, "creepage"),
                 },
                 Panel {
                     title: "Fraction of the contact area in adhesion (0: full slip)".into(),
-                    x_label: "t [s]".into(),
+                    x_label: x_lead.into(),
                     y_label: "adhesion fraction [-]".into(),
                     series: per_wheel(&|t| t.adhesion_fraction, "adhesion fraction"),
                 },

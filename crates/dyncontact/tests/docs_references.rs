@@ -68,3 +68,22 @@ fn docs_and_comments_cite_only_documents_in_the_repository() {
         found.join("\n")
     );
 }
+
+/// The library programs README.md shows are the example files that `cargo test` compiles,
+/// verbatim (so the README's code cannot drift from the API).
+#[test]
+fn readme_library_code_is_the_compiled_examples() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
+    let readme = std::fs::read_to_string(root.join("README.md")).unwrap();
+    for file in [
+        "crates/sim/examples/library_contact.rs",
+        "crates/sim/examples/library_vehicle_bridge.rs",
+    ] {
+        let code = std::fs::read_to_string(root.join(file)).unwrap();
+        let block = format!("```rust\n{}\n```", code.trim_end());
+        assert!(
+            readme.contains(&block),
+            "README.md does not show {file} verbatim"
+        );
+    }
+}

@@ -557,6 +557,12 @@ fn vehicle_bridge_examples_match_the_docs() {
             q("traction/max_longitudinal_force", -15621.9, 0.1),
             q("traction/mean_longitudinal_force", -14542.3, 0.1),
             n("traction/saturated_steps", 0.0),
+            // The prescribed creepage fixes the rotation: ω = V(1 − ξ)/R = 30 × 0.998/0.46.
+            q(
+                "traction/final_angular_velocity/0",
+                30.0 * 0.998 / 0.46,
+                1e-9,
+            ),
         ],
         docs,
     );
