@@ -634,7 +634,6 @@ fn write_tangential_outputs(dir: &RunOutput, t: &TangentialSolution) -> Result<(
         dy: g.dy * 1e3,
         values,
     };
-    let adhesion = ElementState::Adhesion;
     if g.ny == 1 {
         // A single row (2-D case, e.g. Carter's): line plots along x.
         let cells = |values: &[f64]| -> Vec<(f64, f64)> {
@@ -674,7 +673,7 @@ fn write_tangential_outputs(dir: &RunOutput, t: &TangentialSolution) -> Result<(
             &[plot::Panel {
                 title: format!(
                     "element state along x (single grid row): {} adhesion, {} slip elements",
-                    count(adhesion),
+                    count(ElementState::Adhesion),
                     count(ElementState::Slip)
                 ),
                 x_label: "x [mm]".into(),

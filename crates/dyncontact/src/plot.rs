@@ -134,6 +134,9 @@ pub struct SeriesReport {
     pub drawn_pieces: usize,
     /// Whether the series has an entry in the legend.
     pub legend: bool,
+    /// Its line colour (RGB) and stroke width in pixels.
+    pub colour: [u8; 3],
+    pub width: u32,
 }
 
 /// What one drawn panel showed.
@@ -198,13 +201,22 @@ fn publish(report: &FigureReport) -> Result<()> {
     Ok(())
 }
 
-const COLOURS: [RGBColor; 6] = [
+/// Line colours in order (Tableau 10 reordered, then black and navy): twelve distinct colours,
+/// so a panel of up to twelve series never repeats one (the sweep plots draw ten trains, the
+/// envelope and the limit).
+const COLOURS: [RGBColor; 12] = [
     RGBColor(31, 119, 180),
     RGBColor(214, 39, 40),
     RGBColor(44, 160, 44),
     RGBColor(148, 103, 189),
     RGBColor(255, 127, 14),
     RGBColor(23, 190, 207),
+    RGBColor(140, 86, 75),
+    RGBColor(227, 119, 194),
+    RGBColor(127, 127, 127),
+    RGBColor(188, 189, 34),
+    RGBColor(0, 0, 0),
+    RGBColor(0, 0, 128),
 ];
 
 /// Largest magnitude a plotted value may have (beyond it the axis labels and the line
@@ -553,6 +565,8 @@ where
             points_outside: finite - n_inside,
             drawn_pieces: pieces[k].len() + markers[k].len(),
             legend: entries.iter().any(|e| e.0 == k),
+            colour: [colour.0, colour.1, colour.2],
+            width: if s.role == Role::Reference { 1 } else { 2 },
         });
     }
     for (k, dx, row) in layout {

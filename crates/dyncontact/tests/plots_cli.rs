@@ -84,16 +84,19 @@ fn creep_curves_through_zero_plot_cleanly() {
 
 /// The checker finds each defect: a data point outside the axes, a legend entry without a
 /// line, a series neither drawn nor named in the note, a one-letter legend label, an axis
-/// label without unit, a map with unequal scales, a categorical legend that misses cells.
+/// label without unit, two legend entries drawn alike, a map with unequal scales, a
+/// categorical legend that misses cells.
 #[test]
 fn the_plot_checker_rejects_each_defect() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path();
     std::fs::write(out.join("f.png"), b"png").unwrap();
     let series = |label: &str, outside: u64, drawn: u64, legend: bool| {
+        // A colour per label, as the plots give one per series.
+        let c: u64 = label.bytes().map(u64::from).sum();
         serde_json::json!({"label": label, "role": "data", "points": 10, "finite_points": 10,
             "points_inside": 10 - outside, "points_outside": outside, "drawn_pieces": drawn,
-            "legend": legend})
+            "legend": legend, "colour": [c, 0, 0], "width": 2})
     };
     let panel = |series: Vec<serde_json::Value>, note: Option<&str>, y_label: &str| {
         serde_json::json!({"title": "t", "x_label": "t [s]", "y_label": y_label,
@@ -146,6 +149,16 @@ fn the_plot_checker_rejects_each_defect() {
             "F [N]",
         ),
         panel(vec![series("wheel 0", 0, 9, false)], None, "F"),
+        // Two legend entries drawn alike.
+        panel(
+            vec![series("wheel 0", 0, 9, true), {
+                let mut s = series("wheel 9", 0, 9, true);
+                s["colour"] = series("wheel 0", 0, 9, true)["colour"].clone();
+                s
+            }],
+            None,
+            "F [N]",
+        ),
     ];
     for (k, bad) in defects.into_iter().enumerate() {
         assert!(!check(figure(vec![bad], vec![])), "panel defect {k} passed");

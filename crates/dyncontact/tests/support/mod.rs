@@ -67,7 +67,7 @@ pub const PLOT_REPORT_ENV: &str = "DYNCONTACT_PLOT_REPORT";
 /// Checks the figure reports the binary wrote to `report` (one JSON object per line, see
 /// `src/plot.rs`) for figures in `out`: every figure file exists and names its scenario;
 /// every panel has axis labels with units and drawn data; every data point lies inside the
-/// axes; every legend entry has a drawn line; a panel of several series has a legend entry for
+/// axes; every legend entry has a drawn line of its own colour and width; a panel of several series has a legend entry for
 /// each drawn series, with a label longer than one letter, and names every
 /// series it could not draw in its note; maps keep equal scales in x and y, contain their grid,
 /// and have a colour bar or a categorical legend covering every cell. Returns the number of
@@ -108,6 +108,23 @@ pub fn check_plot_report(report: &Path, out: &Path, context: &str) -> usize {
             }
             if !series.iter().any(|s| s["drawn_pieces"].as_u64() > Some(0)) {
                 bad(format!("panel \"{title}\": nothing drawn"));
+            }
+            let styles: Vec<(String, String)> = series
+                .iter()
+                .filter(|s| s["legend"] == true)
+                .map(|s| {
+                    (
+                        format!("{}/{}", s["colour"], s["width"]),
+                        s["label"].to_string(),
+                    )
+                })
+                .collect();
+            for (i, (style, label)) in styles.iter().enumerate() {
+                if let Some((_, other)) = styles[..i].iter().find(|(st, _)| st == style) {
+                    bad(format!(
+                        "panel \"{title}\": legend entries {other} and {label} look the same"
+                    ));
+                }
             }
             for s in series {
                 let label = s["label"].as_str().unwrap();
