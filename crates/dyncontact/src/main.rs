@@ -80,9 +80,10 @@ enum Command {
         /// Print one JSON object instead of the readable summary.
         #[arg(long)]
         json: bool,
-        /// Write pressure.csv, pressure.png and summary.json into this directory.
-        #[arg(long)]
-        out: Option<PathBuf>,
+        /// Output directory for pressure.csv, the plots and summary.json (and traction.csv
+        /// with friction).
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
     },
     /// Modal analysis of a bridge: table of n, βL, ω, f (from a file's `[bridge]` section).
     Modes {
@@ -91,9 +92,9 @@ enum Command {
         /// Print JSON (`modes`: list of `n`, `beta_l`, `omega`, `frequency`).
         #[arg(long)]
         json: bool,
-        /// Write mode_shapes.csv, modes.png and modes.json into this directory.
-        #[arg(long)]
-        out: Option<PathBuf>,
+        /// Output directory for mode_shapes.csv, modes.png and modes.json.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
     },
     /// Creep force against creepage in steady rolling: exact, FASTSIM and linear theory
     /// (a contact case with \[friction\]; see docs/tangential.md).
@@ -255,9 +256,9 @@ fn run_cli() -> Result<()> {
                 )));
             }
             let case = contact_case::parse(&text, base_dir(&file)).map_err(bad_input)?;
-            run_contact(case, json, out.as_deref())
+            run_contact(case, json, Some(&out))
         }
-        Command::Modes { file, json, out } => modes_cli::run(&read(&file)?, json, out.as_deref()),
+        Command::Modes { file, json, out } => modes_cli::run(&read(&file)?, json, Some(&out)),
         Command::Bench { target, max_n } => match target {
             BenchTarget::Contact => bench::contact(max_n),
             BenchTarget::Beam => bench::beam(),

@@ -153,3 +153,22 @@ fn summaries_echo_their_input_and_csv_counts_are_integers() {
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     assert_eq!(s["input"]["scenario"]["vehicle"]["speed"], 27.78);
 }
+
+/// Every subcommand that writes files writes them into `./out` unless `--out` says otherwise
+/// (`contact` and `modes` included).
+#[test]
+fn contact_and_modes_write_into_out_by_default() {
+    for (args, file) in [
+        (["contact", "hertz_sphere.toml"], "pressure.csv"),
+        (["modes", "moving_load_fryba.toml"], "modes.json"),
+    ] {
+        let cwd = tempfile::tempdir().unwrap();
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_dyncontact"))
+            .args([args[0], example(args[1]).to_str().unwrap()])
+            .current_dir(cwd.path())
+            .output()
+            .unwrap();
+        assert_eq!(code(&o), Some(0), "{args:?}");
+        assert!(cwd.path().join("out").join(file).exists(), "{args:?}");
+    }
+}

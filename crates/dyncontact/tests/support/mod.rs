@@ -6,12 +6,10 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-/// Run the `dyncontact` binary built for these tests.
+/// Run the `dyncontact` binary built for these tests, in a fresh working directory (every
+/// subcommand writes into `./out` by default; a test that wants the files passes `--out`).
 pub fn dyncontact(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_dyncontact"))
-        .args(args)
-        .output()
-        .expect("binary runs")
+    dyncontact_env(args, &[])
 }
 
 /// Write `text` to `dir/name` and return the path as a string (for the command line).
@@ -53,8 +51,9 @@ pub fn num(v: &serde_json::Value, pointer: &str) -> f64 {
 
 /// Run the binary with extra environment variables.
 pub fn dyncontact_env(args: &[&str], env: &[(&str, &std::ffi::OsStr)]) -> Output {
+    let cwd = tempfile::tempdir().expect("a working directory");
     let mut c = Command::new(env!("CARGO_BIN_EXE_dyncontact"));
-    c.args(args);
+    c.args(args).current_dir(cwd.path());
     for (k, v) in env {
         c.env(k, v);
     }
