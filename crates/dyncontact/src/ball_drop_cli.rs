@@ -50,7 +50,15 @@ pub fn run(prepared: BallDropConfig, out: &Path, json: bool) -> Result<()> {
     let summary = summary(&prepared, &result);
     output::write_csv(
         &run_out.path("timeseries.csv"),
-        &["t", "z", "v", "a", "approach", "force", "energy"],
+        &[
+            "t_s",
+            "z_m",
+            "v_m_s",
+            "a_m_s2",
+            "approach_m",
+            "force_n",
+            "energy_j",
+        ],
         result
             .samples
             .iter()

@@ -530,7 +530,7 @@ pub fn write_outputs(dir: &RunOutput, outcome: &CaseOutcome) -> Result<()> {
     let g = sol.grid;
     output::write_csv(
         &dir.path("pressure.csv"),
-        &["x", "y", "p"],
+        &["x_m", "y_m", "p_pa"],
         (0..g.len()).map(|k| {
             let (x, y) = g.centre(k);
             vec![x, y, sol.pressure[k]]
@@ -603,7 +603,7 @@ fn write_tangential_outputs(dir: &RunOutput, t: &TangentialSolution) -> Result<(
     let g = t.grid;
     output::write_csv(
         &dir.path("traction.csv"),
-        &["x", "y", "px", "py", "state", "slip_x", "slip_y"],
+        &["x_m", "y_m", "px_pa", "py_pa", "state", "slip_x", "slip_y"],
         (0..g.len()).map(|k| {
             let (x, y) = g.centre(k);
             vec![

@@ -79,8 +79,9 @@ pub fn write_outputs(dir: &RunOutput, b: &Bridge) -> Result<()> {
         row.extend_from_slice(&shapes);
         rows.push(row);
     }
-    let names: Vec<String> = std::iter::once("x".to_string())
-        .chain((1..=n).map(|j| format!("w{j}")))
+    // Mass-normalised shapes have the unit 1/√kg.
+    let names: Vec<String> = std::iter::once("x_m".to_string())
+        .chain((1..=n).map(|j| format!("w{j}_1_sqrt_kg")))
         .collect();
     let header: Vec<&str> = names.iter().map(String::as_str).collect();
     let shown = n.min(6);

@@ -215,15 +215,21 @@ fn write_timeseries(
     r: &beam::MovingLoadResponse,
 ) -> Result<()> {
     let np = r.n_points();
-    let mut header = vec!["t".to_string(), "load_position".to_string()];
+    // Column names: quantity, where, unit (docs/outputs.md).
+    let mut header = vec!["t_s".to_string(), "load_position_m".to_string()];
     for (p, x) in r.points.iter().enumerate() {
         let tag = if p == 0 {
             "midspan".to_string()
         } else {
             format!("x{x}")
         };
-        for q in ["deflection", "velocity", "acceleration", "moment"] {
-            header.push(format!("{q}_{tag}"));
+        for (q, unit) in [
+            ("deflection", "m"),
+            ("velocity", "m_s"),
+            ("acceleration", "m_s2"),
+            ("moment", "n_m"),
+        ] {
+            header.push(format!("{q}_{tag}_{unit}"));
         }
     }
     let names: Vec<&str> = header.iter().map(String::as_str).collect();

@@ -82,37 +82,38 @@ impl Row {
 /// The CSV header for `nw` wheels (with the three traction columns per wheel when
 /// `with_traction`).
 fn header(nw: usize, with_traction: bool) -> Vec<String> {
+    // Column names: quantity, where, unit (docs/outputs.md); "midspan" is the output point.
     let mut header: Vec<String> = [
-        "t",
-        "midspan_deflection",
-        "midspan_velocity",
-        "midspan_acceleration",
+        "t_s",
+        "deflection_midspan_m",
+        "velocity_midspan_m_s",
+        "acceleration_midspan_m_s2",
         "iterations",
     ]
     .iter()
     .map(|s| s.to_string())
     .collect();
     let per_wheel = [
-        "position",
-        "wheel_z",
-        "body_z",
-        "body_acceleration",
-        "contact_force",
-        "approach",
-        "patch_length",
-        "patch_width",
-        "max_pressure",
-        "longitudinal_force",
-        "creepage",
-        "adhesion_fraction",
+        ("position", "_m"),
+        ("wheel_z", "_m"),
+        ("body_z", "_m"),
+        ("body_acceleration", "_m_s2"),
+        ("contact_force", "_n"),
+        ("approach", "_m"),
+        ("patch_length", "_m"),
+        ("patch_width", "_m"),
+        ("max_pressure", "_pa"),
+        ("longitudinal_force", "_n"),
+        ("creepage", ""),
+        ("adhesion_fraction", ""),
     ];
     let per_wheel = &per_wheel[..if with_traction { 12 } else { 9 }];
     for k in 0..nw {
-        for &name in per_wheel {
+        for &(name, unit) in per_wheel {
             header.push(if nw == 1 {
-                name.to_string()
+                format!("{name}{unit}")
             } else {
-                format!("{name}_{k}")
+                format!("{name}_{k}{unit}")
             });
         }
     }
@@ -540,9 +541,11 @@ mod tests {
     fn header_has_the_traction_columns_after_each_wheel() {
         let h = header(2, true);
         assert_eq!(h.len(), 5 + 2 * 12);
-        assert_eq!(h[5 + 8], "max_pressure_0");
-        assert_eq!(h[5 + 9], "longitudinal_force_0");
-        assert_eq!(h[5 + 12], "position_1");
-        assert_eq!(header(1, false)[5..7], ["position", "wheel_z"]);
+        assert_eq!(h[0], "t_s");
+        assert_eq!(h[5 + 8], "max_pressure_0_pa");
+        assert_eq!(h[5 + 9], "longitudinal_force_0_n");
+        assert_eq!(h[5 + 10], "creepage_0");
+        assert_eq!(h[5 + 12], "position_1_m");
+        assert_eq!(header(1, false)[5..7], ["position_m", "wheel_z_m"]);
     }
 }
