@@ -276,7 +276,8 @@ fn plot_outputs(
         &dir.path("midspan_deflection.png"),
         &[plot::Panel {
             title: format!(
-                "midspan deflection, v = {} m/s, DAF = {}",
+                "deflection at mid-length, x = {} m, v = {} m/s, DAF = {}",
+                r.points[0],
                 s.speed,
                 s.dynamic_amplification
                     .map_or("n/a".into(), |d| format!("{d:.4}"))
