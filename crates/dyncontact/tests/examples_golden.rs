@@ -503,9 +503,47 @@ fn vehicle_bridge_examples_match_the_docs() {
             n("solver/steps", 3334.0),
             n("solver/failed_steps", 0.0),
             q("solver/mean_iterations_per_step", 1.01, 0.01),
+            n("solver/max_iterations_per_step", 2.0),
             q("solver/mean_contact_iterations_per_step", 4.41, 0.01),
+            n("contact/loss_of_contact_events", 0.0),
         ],
         docs,
+    );
+    // "The patch is 13.0 mm long and 9.8 mm wide at the start (static load), peak pressure
+    // 1055 MPa": the first row of timeseries.csv.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = dyncontact(&[
+        "run",
+        example("vehicle_bridge_default.toml").to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success());
+    let csv = std::fs::read_to_string(out.join("timeseries.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let first: Vec<f64> = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    let col = |name: &str| first[header.iter().position(|h| *h == name).unwrap()];
+    assert!(
+        (1e3 * col("patch_length_m") - 13.0).abs() <= 0.05,
+        "{}",
+        col("patch_length_m")
+    );
+    assert!(
+        (1e3 * col("patch_width_m") - 9.8).abs() <= 0.05,
+        "{}",
+        col("patch_width_m")
+    );
+    assert!(
+        (1e-6 * col("max_pressure_pa") - 1055.0).abs() <= 0.5,
+        "{}",
+        col("max_pressure_pa")
     );
     check(
         "vehicle_bridge_biggs.toml",
