@@ -1067,6 +1067,65 @@ mod tests {
         assert!(std::fs::metadata(&path).unwrap().len() > 1000);
     }
 
+    /// Blue pixels of the first series colour in the rows `rows` of an RGB buffer `w` wide.
+    fn series_pixels(buf: &[u8], w: usize, rows: std::ops::Range<usize>) -> usize {
+        let c = COLOURS[0];
+        rows.flat_map(|y| (0..w).map(move |x| 3 * (y * w + x)))
+            .filter(|&i| {
+                let d = |a: u8, b: u8| (i32::from(a) - i32::from(b)).abs();
+                d(buf[i], c.0) + d(buf[i + 1], c.1) + d(buf[i + 2], c.2) < 60
+            })
+            .count()
+    }
+
+    /// A dense zigzag (sharp turns at every point) stays inside the frame: nothing of the line
+    /// reaches the title rows above the plotting area. Drawn the old way (one polyline of
+    /// width 2, whose mitred joins overshoot at sharp turns), the same data does reach them,
+    /// so the check can fail.
+    #[test]
+    fn sharp_turns_do_not_overshoot_the_frame() {
+        register_font();
+        let (w, h) = (600usize, 300usize);
+        let zigzag: Vec<(f64, f64)> = (0..3000)
+            .map(|i| (i as f64 * 1e-3, if i % 2 == 0 { 0.0 } else { 1.0 }))
+            .collect();
+        let panel = Panel {
+            title: "zigzag".into(),
+            x_label: "t [s]".into(),
+            y_label: "y [m]".into(),
+            series: vec![Series::new("zigzag", zigzag.clone())],
+        };
+        let mut buf = vec![255u8; 3 * w * h];
+        {
+            let root =
+                BitMapBackend::with_buffer(&mut buf, (w as u32, h as u32)).into_drawing_area();
+            draw_panel(&root, &panel).unwrap();
+            root.present().unwrap();
+        }
+        // The title occupies the top rows; the plotting area starts below it.
+        assert_eq!(series_pixels(&buf, w, 0..30), 0);
+        let mut old = vec![255u8; 3 * w * h];
+        {
+            let root =
+                BitMapBackend::with_buffer(&mut old, (w as u32, h as u32)).into_drawing_area();
+            let area = root.titled("zigzag", ("sans-serif", 20)).unwrap();
+            let mut chart = ChartBuilder::on(&area)
+                .margin(10)
+                .x_label_area_size(40)
+                .y_label_area_size(80)
+                .build_cartesian_2d(-0.12..3.12, -0.04..1.04)
+                .unwrap();
+            chart
+                .draw_series(LineSeries::new(zigzag, COLOURS[0].stroke_width(2)))
+                .unwrap();
+            root.present().unwrap();
+        }
+        assert!(
+            series_pixels(&old, w, 0..30) > 0,
+            "the old drawing did not overshoot"
+        );
+    }
+
     #[test]
     fn a_map_keeps_equal_scales() {
         let dir = tempfile::tempdir().unwrap();
