@@ -1,7 +1,7 @@
 //! Modal loads and quasi-static modal response.
 //!
 //! With mass-normalised modes the generalised force of mode j is f_j = ∫₀^L p(x) w_j(x) dx, which
-//! for point forces F_k at x_k is Σ_k F_k w_j(x_k) (the seed talk's modal equation
+//! for point forces F_k at x_k is Σ_k F_k w_j(x_k) (the modal equation of references.md §D4.4
 //! ρ c_j'' = ∫ p w_j dx − EI β_j⁴ c_j). Distributed loads are integrated by a composite
 //! Gauss–Legendre or Simpson rule ([`QuadratureRule`]) whose weighted shape values are cached.
 

@@ -1,7 +1,7 @@
 //! The modal-basis abstraction shared by analytic and finite-element beams.
 //!
 //! A modal basis represents the displacement as u(x, t) = Σ_j q_j(t) w_j(x) (references.md §D1.1,
-//! the seed talk's "Modal analysis" slides). The shapes are mass-normalised,
+//! §D4.4). The shapes are mass-normalised,
 //! ∫ ρA w_i w_j dx (+ Σ point masses) = δ_ij, so each modal equation reads
 //! q_j'' + 2ζ_j ω_j q_j' + ω_j² q_j = f_j(t) with f_j = ∫ p w_j dx.
 

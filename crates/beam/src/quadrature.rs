@@ -1,5 +1,5 @@
 //! Quadrature rules on an interval: composite Gauss–Legendre and composite Simpson
-//! (the closed Newton–Cotes rule of the seed talk's "Modal analysis" slides).
+//! (the closed Newton–Cotes rule of references.md §D4.4).
 
 use crate::error::{BeamError, finite};
 

@@ -1,4 +1,4 @@
-//! The seed talk's theorem: ‖u − u_m‖₂ ≤ L⁴‖p‖₂/(3π⁴ EI m³) for the stationary modal solution,
+//! The truncation bound of references.md §D4.4: ‖u − u_m‖₂ ≤ L⁴‖p‖₂/(3π⁴ EI m³) for the stationary modal solution,
 //! measured on a clamped–clamped beam under a uniform load against the exact static deflection
 //! u = p x²(L − x)²/(24 EI).
 
@@ -88,7 +88,7 @@ fn modal_truncation_obeys_the_m_cubed_bound() {
     assert!((-4.6..=-3.8).contains(&slope), "slope {slope}");
 }
 
-/// Composite Simpson (the seed's Newton–Cotes choice) projects the uniform load onto the CC modes
+/// Composite Simpson (the Newton–Cotes rule of references.md §D4.4) projects the uniform load onto the CC modes
 /// with an error that converges at order 4 (measured on mode 9 between 200 and 400 intervals,
 /// against the Gauss value, which is exact to rounding): 4 ± 0.3.
 #[test]

@@ -50,13 +50,21 @@ pub fn run(prepared: BallDropConfig, out: &Path, json: bool) -> Result<()> {
     let summary = summary(&prepared, &result);
     output::write_csv(
         &run_out.path("timeseries.csv"),
-        &["t", "z", "v", "a", "approach", "force", "energy"],
+        &[
+            "t_s",
+            "z_m",
+            "v_m_s",
+            "a_m_s2",
+            "approach_m",
+            "force_n",
+            "energy_j",
+        ],
         result
             .samples
             .iter()
             .map(|s| vec![s.t, s.z, s.v, s.a, s.approach, s.force, s.energy]),
     )?;
-    output::write_json(&run_out.path("summary.json"), &summary)?;
+    output::write_summary(&run_out.path("summary.json"), &summary)?;
     if prepared.plot {
         write_plot(&run_out.path("ball_drop.png"), &result)?;
     }
@@ -144,14 +152,14 @@ fn write_plot(path: &Path, r: &BallDropResult) -> Result<()> {
             title: "height of the lowest point".into(),
             x_label: "t [s]".into(),
             y_label: "z [m]".into(),
-            series: vec![Series::new("z", z)],
+            series: vec![Series::new("height of the lowest point", z)],
         },
         Panel {
             title: "contact force".into(),
             x_label: "t [s]".into(),
             y_label: "F [N]".into(),
             series: vec![
-                Series::new("F", f),
+                Series::new("contact force", f),
                 Series::new(
                     "peak of each impact (widened to be visible)",
                     peak_markers(r),
@@ -176,7 +184,7 @@ fn write_plot(path: &Path, r: &BallDropResult) -> Result<()> {
             x_label: "t − t₀ [µs]".into(),
             y_label: "F [N]".into(),
             series: vec![
-                Series::new("simulated", zoom),
+                Series::new("simulated contact force", zoom),
                 Series::new("closed-form F* over the closed-form t_c", hertz),
             ],
         });
@@ -232,7 +240,7 @@ fn bench_run(scenario: &BallDrop, reference: &HertzImpact) -> Result<(f64, BallD
     Ok((err, r))
 }
 
-/// `dyncontact bench integrators`: the brief's drop (steel ball, 0.1 m, 1 s, 4 bounces) with
+/// `dyncontact bench integrators`: the reference drop (references.md §C4.10) (steel ball, 0.1 m, 1 s, 4 bounces) with
 /// every method, at the loosest tolerance (adaptive) or largest step (fixed) that gives a
 /// relative error ≤ `target` in the first impact's peak force against the closed form
 /// `(2/5)Kδ*^{5/2} = ½mv² + mgδ*`, `F* = Kδ*^{3/2}`.
@@ -359,7 +367,7 @@ pub fn bench_integrators(target: f64) -> Result<()> {
     if let (Some(f), Some(n)) = (fastest, multistep) {
         let (lo, hi) = (8e-6 * n as f64, 23e-6 * n as f64);
         println!(
-            "fastest: {} in {:.3} ms. ESTIMATE (not a measurement of scipy): LSODA at 8–23 µs/step (the issue's quoted cost) over {n} steps (our variable-order bdf/adams step count at this accuracy) ≈ {:.1}–{:.1} ms, i.e. {:.0}–{:.0}× the fastest method here.",
+            "fastest: {} in {:.3} ms. ESTIMATE (not a measurement of scipy): LSODA at 8–23 µs/step (an assumed cost, docs/references.md §R5.2) over {n} steps (our variable-order bdf/adams step count at this accuracy) ≈ {:.1}–{:.1} ms, i.e. {:.0}–{:.0}× the fastest method here.",
             f.method,
             1e3 * f.wall,
             1e3 * lo,

@@ -143,34 +143,63 @@ pub fn write_outputs(dir: &RunOutput, outcome: &CaseOutcome) -> Result<()> {
     let g = sol.grid;
     output::write_csv(
         &dir.path("pressure.csv"),
-        &["x", "y", "p"],
+        &["x_m", "y_m", "p_pa"],
         (0..g.len()).map(|k| {
             let (x, y) = g.centre(k);
             vec![x, y, sol.pressure[k]]
         }),
     )?;
     let mpa: Vec<f64> = sol.pressure.iter().map(|p| p * 1e-6).collect();
-    plot::heatmap(
-        &dir.path("pressure.png"),
-        "contact pressure",
-        "x [mm]",
-        "y [mm]",
-        "p [MPa]",
-        &plot::Field {
-            nx: g.nx,
-            ny: g.ny,
-            x0: g.x0 * 1e3,
-            y0: g.y0 * 1e3,
-            dx: g.dx * 1e3,
-            dy: g.dy * 1e3,
-            values: &mpa,
-        },
-    )?;
+    let outside: Vec<bool> = sol.pressure.iter().map(|&p| p <= 0.0).collect();
+    let title = format!(
+        "contact pressure (normal force {:.4e} N)",
+        outcome.summary.normal_force
+    );
+    if g.ny == 1 {
+        // A single row (a 2-D, line-contact case): the profile is the whole picture.
+        plot::panels(
+            &dir.path("pressure.png"),
+            &[plot::Panel {
+                title: format!("{title}, single grid row (2-D case)"),
+                x_label: "x [mm]".into(),
+                y_label: "pressure p [MPa]".into(),
+                series: vec![plot::Series::steps(
+                    "boundary elements",
+                    &(0..g.nx)
+                        .map(|ix| (g.x(ix) * 1e3, mpa[ix]))
+                        .collect::<Vec<_>>(),
+                    g.dx * 1e3,
+                )],
+            }],
+        )?;
+    } else {
+        plot::map(
+            &dir.path("pressure.png"),
+            &plot::Map {
+                title,
+                x_label: "x [mm]",
+                y_label: "y [mm]",
+                field: plot::Field {
+                    nx: g.nx,
+                    ny: g.ny,
+                    x0: g.x0 * 1e3,
+                    y0: g.y0 * 1e3,
+                    dx: g.dx * 1e3,
+                    dy: g.dy * 1e3,
+                    values: &mpa,
+                },
+                scale: plot::Scale::Continuous {
+                    label: "p [MPa]",
+                    exterior: Some((&outside, "no contact (p = 0)")),
+                },
+            },
+        )?;
+    }
     plot::panels(&dir.path("pressure_profile.png"), &[profile_panel(outcome)])?;
     if let Some(t) = &outcome.tangential {
         write_tangential_outputs(dir, t)?;
     }
-    output::write_json(&dir.path("summary.json"), &outcome.summary)
+    output::write_summary(&dir.path("summary.json"), &outcome.summary)
 }
 
 /// State code of an element in outputs: 0 exterior, 1 adhesion, 2 slip.
@@ -187,7 +216,7 @@ fn write_tangential_outputs(dir: &RunOutput, t: &TangentialSolution) -> Result<(
     let g = t.grid;
     output::write_csv(
         &dir.path("traction.csv"),
-        &["x", "y", "px", "py", "state", "slip_x", "slip_y"],
+        &["x_m", "y_m", "px_pa", "py_pa", "state", "slip_x", "slip_y"],
         (0..g.len()).map(|k| {
             let (x, y) = g.centre(k);
             vec![
@@ -203,7 +232,74 @@ fn write_tangential_outputs(dir: &RunOutput, t: &TangentialSolution) -> Result<(
     )?;
     let field = |values: &[f64]| -> Vec<f64> { values.iter().map(|v| v * 1e-6).collect() };
     let (px, py) = (field(&t.traction_x), field(&t.traction_y));
+    let exterior: Vec<bool> = t
+        .state
+        .iter()
+        .map(|&s| s == ElementState::Exterior)
+        .collect();
     let states: Vec<f64> = t.state.iter().map(|&s| state_code(s)).collect();
+    let grid_field = |values| plot::Field {
+        nx: g.nx,
+        ny: g.ny,
+        x0: g.x0 * 1e3,
+        y0: g.y0 * 1e3,
+        dx: g.dx * 1e3,
+        dy: g.dy * 1e3,
+        values,
+    };
+    if g.ny == 1 {
+        // A single row (2-D case, e.g. Carter's): line plots along x.
+        let cells = |values: &[f64]| -> Vec<(f64, f64)> {
+            (0..g.nx).map(|ix| (g.x(ix) * 1e3, values[ix])).collect()
+        };
+        for (name, title, label, values) in [
+            (
+                "traction_x.png",
+                "tangential traction p_x",
+                "p_x [MPa]",
+                &px,
+            ),
+            (
+                "traction_y.png",
+                "tangential traction p_y",
+                "p_y [MPa]",
+                &py,
+            ),
+        ] {
+            plot::panels(
+                &dir.path(name),
+                &[plot::Panel {
+                    title: format!("{title}, single grid row (2-D case)"),
+                    x_label: "x [mm]".into(),
+                    y_label: label.into(),
+                    series: vec![plot::Series::steps(
+                        "boundary elements",
+                        &cells(values),
+                        g.dx * 1e3,
+                    )],
+                }],
+            )?;
+        }
+        let count = |want: ElementState| t.state.iter().filter(|&&s| s == want).count();
+        plot::panels(
+            &dir.path("adhesion_slip.png"),
+            &[plot::Panel {
+                title: format!(
+                    "element state along x (single grid row): {} adhesion, {} slip elements",
+                    count(ElementState::Adhesion),
+                    count(ElementState::Slip)
+                ),
+                x_label: "x [mm]".into(),
+                y_label: "state [0 outside, 1 adhesion, 2 slip]".into(),
+                series: vec![plot::Series::steps(
+                    "element state",
+                    &cells(&states),
+                    g.dx * 1e3,
+                )],
+            }],
+        )?;
+        return Ok(());
+    }
     for (name, title, label, values) in [
         (
             "traction_x.png",
@@ -217,30 +313,35 @@ fn write_tangential_outputs(dir: &RunOutput, t: &TangentialSolution) -> Result<(
             "p_y [MPa]",
             &py,
         ),
-        (
-            "adhesion_slip.png",
-            "0 exterior, 1 adhesion, 2 slip",
-            "state",
-            &states,
-        ),
     ] {
-        plot::heatmap(
+        plot::map(
             &dir.path(name),
-            title,
-            "x [mm]",
-            "y [mm]",
-            label,
-            &plot::Field {
-                nx: g.nx,
-                ny: g.ny,
-                x0: g.x0 * 1e3,
-                y0: g.y0 * 1e3,
-                dx: g.dx * 1e3,
-                dy: g.dy * 1e3,
-                values,
+            &plot::Map {
+                title: title.to_string(),
+                x_label: "x [mm]",
+                y_label: "y [mm]",
+                field: grid_field(values),
+                scale: plot::Scale::Continuous {
+                    label,
+                    exterior: Some((&exterior, "outside the contact")),
+                },
             },
         )?;
     }
+    plot::map(
+        &dir.path("adhesion_slip.png"),
+        &plot::Map {
+            title: "adhesion and slip areas (element count in the legend)".to_string(),
+            x_label: "x [mm]",
+            y_label: "y [mm]",
+            field: grid_field(&states),
+            scale: plot::Scale::Categorical(&[
+                ("outside the contact", plot::EXTERIOR),
+                ("adhesion", plot::RGBColor(44, 160, 44)),
+                ("slip", plot::RGBColor(214, 39, 40)),
+            ]),
+        },
+    )?;
     Ok(())
 }
 
@@ -254,7 +355,12 @@ fn profile_panel(outcome: &CaseOutcome) -> plot::Panel {
     let bem: Vec<(f64, f64)> = (0..g.nx)
         .map(|ix| (g.x(ix) * 1e3, sol.pressure[iy * g.nx + ix] * 1e-6))
         .collect();
-    let mut series = vec![plot::Series::new("boundary elements", bem)];
+    // Each element carries a constant pressure: drawn as steps.
+    let mut series = vec![plot::Series::steps(
+        "boundary elements (constant per element)",
+        &bem,
+        g.dx * 1e3,
+    )];
     let hertz_curve = |a: f64, p0: f64| -> Vec<(f64, f64)> {
         (0..=400)
             .map(|k| {
@@ -267,21 +373,24 @@ fn profile_panel(outcome: &CaseOutcome) -> plot::Panel {
     if let Some(h) = &outcome.summary.hertz {
         let y = g.y(iy) - yc;
         let scale = (1.0 - (y / h.b).powi(2)).max(0.0).sqrt();
-        series.push(plot::Series::new(
-            "Hertz",
+        series.push(plot::Series::reference(
+            "Hertz theory, same force",
             hertz_curve(h.a * scale, h.max_pressure * scale),
         ));
     }
     if let Some(h) = &outcome.summary.hertz_line {
-        series.push(plot::Series::new(
-            "Hertz (line contact)",
+        series.push(plot::Series::reference(
+            "Hertz line-contact theory, same force per length",
             hertz_curve(h.a, h.max_pressure),
         ));
     }
     plot::Panel {
-        title: format!("pressure along x at y = {:.4} mm", g.y(iy) * 1e3),
+        title: format!(
+            "pressure along x on the grid row through the centre of pressure (y = {:.4} mm)",
+            g.y(iy) * 1e3
+        ),
         x_label: "x [mm]".into(),
-        y_label: "p [MPa]".into(),
+        y_label: "pressure p [MPa]".into(),
         series,
     }
 }

@@ -75,6 +75,19 @@ pub fn run(
         CreepVariable::Spin,
     ][which];
     let curve = creep_curve::compute(&case, variable, &values, flags[which], &|| true)?;
+    let not_converged: Vec<f64> = curve
+        .points
+        .iter()
+        .zip(&values)
+        .filter(|(p, _)| !p.exact_converged)
+        .map(|(_, &v)| v)
+        .collect();
+    for v in &not_converged {
+        eprintln!(
+            "warning: exact solver at {} = {v:e} did not converge; the point is kept, flagged exact_converged = false",
+            flags[which]
+        );
+    }
     write(&run_out, &curve, which)?;
     run_out.commit()?;
     if json {
@@ -84,6 +97,19 @@ pub fn run(
         println!(
             "wrote {}/creep_curve.csv, creep_curve.json, creep_curve.png",
             out.display()
+        );
+    }
+    if !not_converged.is_empty() {
+        bail!(
+            "the exact solver did not converge at {} of {} points ({} = {}); they are kept in the outputs with exact_converged = false",
+            not_converged.len(),
+            values.len(),
+            flags[which],
+            not_converged
+                .iter()
+                .map(|v| format!("{v:e}"))
+                .collect::<Vec<_>>()
+                .join(", ")
         );
     }
     Ok(())
@@ -134,16 +160,17 @@ fn write(dir: &RunOutput, c: &CreepCurve, which: usize) -> Result<()> {
         &[
             "creepage_x",
             "creepage_y",
-            "spin",
-            "exact_fx",
-            "exact_fy",
-            "exact_mz",
+            "spin_1_m",
+            "exact_fx_n",
+            "exact_fy_n",
+            "exact_mz_n_m",
             "exact_adhesion",
             "exact_slip",
-            "fastsim_fx",
-            "fastsim_fy",
-            "linear_fx",
-            "linear_fy",
+            "fastsim_fx_n",
+            "fastsim_fy_n",
+            "linear_fx_n",
+            "linear_fy_n",
+            "exact_converged",
         ],
         c.points.iter().map(|p| {
             vec![
@@ -159,6 +186,7 @@ fn write(dir: &RunOutput, c: &CreepCurve, which: usize) -> Result<()> {
                 nan(p.fastsim_force_y),
                 nan(p.linear_force_x),
                 nan(p.linear_force_y),
+                if p.exact_converged { 1.0 } else { 0.0 },
             ]
         }),
     )?;
@@ -175,29 +203,38 @@ fn write(dir: &RunOutput, c: &CreepCurve, which: usize) -> Result<()> {
         }
     };
     let mut series = Vec::new();
-    for (k, label) in ["exact (half-space)", "FASTSIM", "linear theory"]
-        .into_iter()
-        .enumerate()
+    for (k, label) in [
+        "exact (half-space)",
+        "FASTSIM",
+        "linear theory (Kalker's coefficients)",
+    ]
+    .into_iter()
+    .enumerate()
     {
-        // The linear theory grows without bound: draw it only up to 1.2 μF_n.
         let pts: Vec<(f64, f64)> = c
             .points
             .iter()
             .filter_map(|p| pick(p, k).map(|f| (swept(p, which), f / lim)))
-            .filter(|(_, f)| f.abs() <= 1.2)
             .collect();
-        if !pts.is_empty() {
-            series.push(plot::Series::new(label, pts));
+        if pts.is_empty() {
+            continue;
         }
+        // The linear theory grows without bound: a reference clipped to the axes the
+        // saturating curves set.
+        series.push(if k == 2 {
+            plot::Series::reference(label, pts)
+        } else {
+            plot::Series::new(label, pts)
+        });
     }
     let comp = if which == 0 { "F_x" } else { "F_y" };
-    let unit = if which == 2 { " [1/m]" } else { "" };
+    let unit = if which == 2 { " [1/m]" } else { " [-]" };
     plot::panels(
         &dir.path("creep_curve.png"),
         &[plot::Panel {
             title: format!("creep force {comp} against {}", c.variable),
             x_label: format!("{}{unit}", c.variable),
-            y_label: format!("{comp} / (mu Fn)"),
+            y_label: format!("{comp} / (μ F_n) [-]"),
             series,
         }],
     )

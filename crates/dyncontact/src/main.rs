@@ -39,8 +39,9 @@ const DEFAULT_SCENARIO_PATH: &str = "examples/vehicle_bridge_default.toml";
     version,
     about = "Contact in dynamical simulations: elastic half-space contact, time integrators, bridge dynamics",
     after_help = "Scenario kinds of `run`: ball_drop, contact, moving_load, sweep, vehicle_bridge.\n\
-Examples of each in examples/ (copy one to start your own); every key is documented in docs/*.md\n\
-(README.md lists the pages). SI units everywhere. Exit codes: 0 ok, 1 run failed or interrupted, 2 bad input."
+Examples of each in examples/ (copy one, or `dyncontact init KIND > my.toml`, to start your own);\n\
+every key is documented in docs/*.md (README.md lists the pages). SI units everywhere.\n\
+Exit codes: 0 ok, 1 run failed or interrupted, 2 bad input."
 )]
 struct Cli {
     #[command(subcommand)]
@@ -59,9 +60,11 @@ enum Command {
         /// Print the JSON summary on standard output.
         #[arg(long)]
         json: bool,
-        /// Override the scenario's `[integrator] method` (ball_drop: euler, rk4, dopri5,
+        /// Override the `[integrator] method` of a ball_drop scenario: euler, rk4, dopri5,
         /// backward_euler, radau5, bdf, adams, verlet, leapfrog, newmark, hht,
-        /// generalized_alpha).
+        /// generalized_alpha. Other kinds set it in the file: vehicle_bridge newmark
+        /// (trapezoidal), linear_acceleration, hht, generalized_alpha, backward_euler, radau5;
+        /// moving_load exact or a structural method (docs/integrators.md).
         #[arg(long)]
         integrator: Option<String>,
         /// Largest estimated work of the run in floating-point operations (default 1e16, about 1e9 per second;
@@ -77,9 +80,10 @@ enum Command {
         /// Print one JSON object instead of the readable summary.
         #[arg(long)]
         json: bool,
-        /// Write pressure.csv, pressure.png and summary.json into this directory.
-        #[arg(long)]
-        out: Option<PathBuf>,
+        /// Output directory for pressure.csv, the plots and summary.json (and traction.csv
+        /// with friction).
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
     },
     /// Modal analysis of a bridge: table of n, βL, ω, f (from a file's `[bridge]` section).
     Modes {
@@ -88,9 +92,9 @@ enum Command {
         /// Print JSON (`modes`: list of `n`, `beta_l`, `omega`, `frequency`).
         #[arg(long)]
         json: bool,
-        /// Write mode_shapes.csv, modes.png and modes.json into this directory.
-        #[arg(long)]
-        out: Option<PathBuf>,
+        /// Output directory for mode_shapes.csv, modes.png and modes.json.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
     },
     /// Creep force against creepage in steady rolling: exact, FASTSIM and linear theory
     /// (a contact case with \[friction\]; see docs/tangential.md).
@@ -98,13 +102,13 @@ enum Command {
         /// Case file (TOML) with \[friction\] mu.
         file: PathBuf,
         /// Sweep the longitudinal creepage: start:stop:count.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         creepage_x: Option<String>,
         /// Sweep the lateral creepage: start:stop:count.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         creepage_y: Option<String>,
         /// Sweep the spin [1/m]: start:stop:count.
-        #[arg(long)]
+        #[arg(long, allow_hyphen_values = true)]
         spin: Option<String>,
         /// Output directory for creep_curve.csv, creep_curve.json, creep_curve.png.
         #[arg(long, default_value = "out")]
@@ -140,6 +144,15 @@ enum Command {
         /// Print the JSON summary on standard output.
         #[arg(long)]
         json: bool,
+    },
+    /// Write a commented template scenario of one kind (a copy of its example in examples/)
+    /// to start your own: `dyncontact init vehicle_bridge > my.toml`.
+    Init {
+        /// Scenario kind: ball_drop, contact, moving_load, sweep, vehicle_bridge.
+        kind: String,
+        /// Write the template to this file (refused if it exists) instead of standard output.
+        #[arg(long)]
+        out: Option<PathBuf>,
     },
     /// Benchmarks: print a table of timings.
     Bench {
@@ -194,8 +207,33 @@ fn restore_default_sigpipe() {
     }
 }
 
+/// The name a scenario file goes by in plot headings: its file name.
+fn scenario_name(file: &Path) -> String {
+    file.file_name().map_or_else(
+        || file.display().to_string(),
+        |n| n.to_string_lossy().into_owned(),
+    )
+}
+
 fn run_cli() -> Result<()> {
     let cli = Cli::parse();
+    match &cli.command {
+        Command::Run { file: None, .. } => {
+            plot::set_scenario(format!("built-in default ({DEFAULT_SCENARIO_PATH})"))
+        }
+        Command::Run { file: Some(f), .. }
+        | Command::Contact { file: f, .. }
+        | Command::Modes { file: f, .. }
+        | Command::CreepCurve { file: f, .. }
+        | Command::Sweep { file: f, .. } => plot::set_scenario(scenario_name(f)),
+        Command::Init { .. } => {}
+        Command::SweepMerge { dirs, .. } => plot::set_scenario(format!(
+            "merged shards of {}",
+            dirs.first()
+                .map_or_else(String::new, |d| d.display().to_string())
+        )),
+        Command::Bench { .. } => {}
+    }
     match cli.command {
         Command::Run {
             file,
@@ -205,10 +243,22 @@ fn run_cli() -> Result<()> {
             max_work,
         } => run_scenario(file.as_deref(), &out, json, integrator.as_deref(), max_work),
         Command::Contact { file, json, out } => {
-            let case = contact_case::parse(&read(&file)?, base_dir(&file)).map_err(bad_input)?;
-            run_contact(case, json, out.as_deref())
+            let text = read(&file)?;
+            output::set_input(scenario_name(&file), text.clone());
+            if let Ok(table) = text.parse::<toml::Table>()
+                && let Some(kind) = table.get("kind").and_then(|k| k.as_str())
+                && kind != "contact"
+            {
+                return Err(bad_input(anyhow::anyhow!(
+                    "{} is a {kind} scenario (kind = \"{kind}\"), not a contact case: use `dyncontact run {}`",
+                    file.display(),
+                    file.display()
+                )));
+            }
+            let case = contact_case::parse(&text, base_dir(&file)).map_err(bad_input)?;
+            run_contact(case, json, Some(&out))
         }
-        Command::Modes { file, json, out } => modes_cli::run(&read(&file)?, json, out.as_deref()),
+        Command::Modes { file, json, out } => modes_cli::run(&read(&file)?, json, Some(&out)),
         Command::Bench { target, max_n } => match target {
             BenchTarget::Contact => bench::contact(max_n),
             BenchTarget::Beam => bench::beam(),
@@ -229,6 +279,7 @@ fn run_cli() -> Result<()> {
                 None => sim::sweep::Shard::ALL,
             };
             let text = read(&file)?;
+            output::set_input(scenario_name(&file), text.clone());
             match sim::config::load(&text, base_dir(&file), &Default::default())
                 .map_err(|e| bad_input(e.into()))?
             {
@@ -243,6 +294,7 @@ fn run_cli() -> Result<()> {
             }
         }
         Command::SweepMerge { dirs, out, json } => sweep_cli::merge(&dirs, &out, json),
+        Command::Init { kind, out } => init(&kind, out.as_deref()),
         Command::CreepCurve {
             file,
             creepage_x,
@@ -262,6 +314,68 @@ fn run_cli() -> Result<()> {
             json,
         ),
     }
+}
+
+/// The template of each scenario kind: its example file (commented, tested by
+/// `tests/examples_golden.rs`).
+const TEMPLATES: [(&str, &str, &str); 5] = [
+    (
+        "ball_drop",
+        "examples/ball_drop_steel.toml",
+        include_str!("../../../examples/ball_drop_steel.toml"),
+    ),
+    (
+        "contact",
+        "examples/hertz_sphere.toml",
+        include_str!("../../../examples/hertz_sphere.toml"),
+    ),
+    (
+        "moving_load",
+        "examples/moving_load_fryba.toml",
+        include_str!("../../../examples/moving_load_fryba.toml"),
+    ),
+    (
+        "sweep",
+        "examples/sweep_hslm.toml",
+        include_str!("../../../examples/sweep_hslm.toml"),
+    ),
+    ("vehicle_bridge", DEFAULT_SCENARIO_PATH, DEFAULT_SCENARIO),
+];
+
+/// `dyncontact init KIND [--out FILE]`.
+fn init(kind: &str, out: Option<&Path>) -> Result<()> {
+    let Some((_, source, text)) = TEMPLATES.iter().find(|(k, _, _)| *k == kind) else {
+        let kinds: Vec<&str> = TEMPLATES.iter().map(|t| t.0).collect();
+        return Err(bad_input(anyhow::anyhow!(
+            "init: unknown scenario kind \"{kind}\" (known: {})",
+            kinds.join(", ")
+        )));
+    };
+    let header = format!(
+        "# Template for kind = \"{kind}\", a copy of {source}. Edit the values (SI units);\n\
+         # every key is documented in docs/ (README.md lists the pages). Run it with\n\
+         # `dyncontact run FILE --out DIR`.\n"
+    );
+    match out {
+        None => print!("{header}{text}"),
+        Some(path) => {
+            if path.exists() {
+                return Err(bad_input(anyhow::anyhow!(
+                    "init: {} exists; not overwritten",
+                    path.display()
+                )));
+            }
+            std::fs::write(path, format!("{header}{text}"))
+                .with_context(|| format!("cannot write {}", path.display()))
+                .map_err(bad_input)?;
+            eprintln!(
+                "wrote {} (kind = \"{kind}\"); run it with `dyncontact run {} --out DIR`",
+                path.display(),
+                path.display()
+            );
+        }
+    }
+    Ok(())
 }
 
 fn read(path: &Path) -> Result<String> {
@@ -288,6 +402,13 @@ fn run_scenario(
             (DEFAULT_SCENARIO.to_string(), PathBuf::from("."))
         }
     };
+    output::set_input(
+        file.map_or_else(
+            || format!("built-in default ({DEFAULT_SCENARIO_PATH})"),
+            scenario_name,
+        ),
+        text.clone(),
+    );
     let options = sim::config::LoadOptions {
         integrator: integrator.map(str::to_string),
         max_work,
@@ -317,10 +438,12 @@ fn run_contact(case: contact_case::PreparedCase, json: bool, out: Option<&Path>)
         contact_case::write_outputs(&run_out, &outcome)?;
         run_out.commit()?;
         if !json {
-            println!(
-                "wrote {}/pressure.csv, pressure.png, pressure_profile.png, summary.json",
-                dir.display()
-            );
+            let written: Vec<&str> = contact_case::OUTPUT_SET
+                .iter()
+                .copied()
+                .filter(|name| dir.join(name).exists())
+                .collect();
+            println!("wrote {}/{}", dir.display(), written.join(", "));
         }
     }
     if !outcome.summary.converged {

@@ -18,12 +18,12 @@ pub fn read_bridge(text: &str) -> Result<Bridge> {
 pub fn print_table(s: &ModesSummary) {
     println!("{}", s.bridge);
     println!(
-        "{:>5} {:>22} {:>16} {:>14}",
+        "{:>5} {:>12} {:>16} {:>14}",
         "n", "beta L", "omega [rad/s]", "f [Hz]"
     );
     for m in &s.modes {
         println!(
-            "{:>5} {:>22.16} {:>16.6} {:>14.6}",
+            "{:>5} {:>12.8} {:>16.6} {:>14.6}",
             m.n, m.beta_l, m.omega, m.frequency
         );
     }
@@ -33,8 +33,9 @@ pub fn print_table(s: &ModesSummary) {
 pub fn write_outputs(dir: &RunOutput, b: &Bridge) -> Result<()> {
     let n = b.basis.n_modes();
     let rows = sim::modes::shapes(b, 401).map_err(|e| anyhow!("{e}"))?;
-    let names: Vec<String> = std::iter::once("x".to_string())
-        .chain((1..=n).map(|j| format!("w{j}")))
+    // Mass-normalised shapes have the unit 1/√kg.
+    let names: Vec<String> = std::iter::once("x_m".to_string())
+        .chain((1..=n).map(|j| format!("w{j}_1_sqrt_kg")))
         .collect();
     let header: Vec<&str> = names.iter().map(String::as_str).collect();
     let shown = n.min(6);

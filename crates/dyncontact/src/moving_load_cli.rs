@@ -93,7 +93,7 @@ pub fn run(config: MovingLoadConfig, out: &Path, json: bool) -> Result<()> {
     let summary = summarise(&bridge, &loads, &response, &name, dt, wall)?;
     write_timeseries(&run_out, &loads, &response)?;
     plot_outputs(&run_out, &loads, &response, &summary)?;
-    output::write_json(&run_out.path("summary.json"), &summary)?;
+    output::write_summary(&run_out.path("summary.json"), &summary)?;
     if !summary.completed {
         run_out.mark_partial("timeseries.csv")?;
     }
@@ -215,15 +215,21 @@ fn write_timeseries(
     r: &beam::MovingLoadResponse,
 ) -> Result<()> {
     let np = r.n_points();
-    let mut header = vec!["t".to_string(), "load_position".to_string()];
+    // Column names: quantity, where, unit (docs/outputs.md).
+    let mut header = vec!["t_s".to_string(), "load_position_m".to_string()];
     for (p, x) in r.points.iter().enumerate() {
         let tag = if p == 0 {
             "midspan".to_string()
         } else {
             format!("x{x}")
         };
-        for q in ["deflection", "velocity", "acceleration", "moment"] {
-            header.push(format!("{q}_{tag}"));
+        for (q, unit) in [
+            ("deflection", "m"),
+            ("velocity", "m_s"),
+            ("acceleration", "m_s2"),
+            ("moment", "n_m"),
+        ] {
+            header.push(format!("{q}_{tag}_{unit}"));
         }
     }
     let names: Vec<&str> = header.iter().map(String::as_str).collect();
@@ -270,7 +276,8 @@ fn plot_outputs(
         &dir.path("midspan_deflection.png"),
         &[plot::Panel {
             title: format!(
-                "midspan deflection, v = {} m/s, DAF = {}",
+                "deflection at mid-length, x = {} m, v = {} m/s, DAF = {}",
+                r.points[0],
                 s.speed,
                 s.dynamic_amplification
                     .map_or("n/a".into(), |d| format!("{d:.4}"))

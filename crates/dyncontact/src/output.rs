@@ -209,6 +209,41 @@ pub fn write_atomic(path: &Path, write: impl FnOnce(&Path) -> Result<()>) -> Res
     }
 }
 
+/// The scenario the run read: its name and its text (echoed in `summary.json`).
+static INPUT: std::sync::OnceLock<(String, String)> = std::sync::OnceLock::new();
+
+/// Record the scenario file of this run (set once, by `main`), for [`write_summary`].
+pub fn set_input(name: impl Into<String>, text: impl Into<String>) {
+    let _ = INPUT.set((name.into(), text.into()));
+}
+
+/// The name of the scenario file recorded by [`set_input`], if any.
+pub fn input_name() -> Option<String> {
+    INPUT.get().map(|(name, _)| name.clone())
+}
+
+/// Write a run's `summary.json`: the value as by [`write_json`], plus `"input"`: the scenario
+/// file's name (`file`) and every key it set, as given (`scenario`, the TOML as JSON; defaults
+/// the file left out are not listed), so the summary says what produced it.
+pub fn write_summary<T: Serialize>(path: &Path, value: &T) -> Result<()> {
+    let mut json: serde_json::Value = serde_json::from_str(&json_text(value)?)?;
+    if let (Some((name, text)), serde_json::Value::Object(map)) = (INPUT.get(), &mut json) {
+        let scenario = text
+            .parse::<toml::Table>()
+            .ok()
+            .and_then(|t| serde_json::to_value(t).ok())
+            .unwrap_or(serde_json::Value::Null);
+        map.insert(
+            "input".into(),
+            serde_json::json!({ "file": name, "scenario": scenario }),
+        );
+    }
+    write_atomic(path, |tmp| {
+        fs::write(tmp, serde_json::to_string_pretty(&json)? + "\n")?;
+        Ok(())
+    })
+}
+
 /// Write a value as pretty JSON, atomically (non-finite numbers: see [`json_text`]).
 pub fn write_json<T: Serialize>(path: &Path, value: &T) -> Result<()> {
     write_atomic(path, |tmp| {
@@ -315,7 +350,13 @@ impl CsvStream {
             if k > 0 {
                 self.line.push(',');
             }
-            let _ = write!(self.line, "{v:e}");
+            // Integral values (counts, iterations, states, flags) as integers; the rest in
+            // exponent form with every digit of the f64.
+            if v.is_finite() && v.fract() == 0.0 && v.abs() < 9.0e15 {
+                let _ = write!(self.line, "{}", *v as i64);
+            } else {
+                let _ = write!(self.line, "{v:e}");
+            }
         }
         self.line.push('\n');
         self.flush_line()
@@ -345,8 +386,17 @@ mod tests {
         assert!(r.is_err());
         assert!(!path.exists());
         assert_eq!(fs::read_dir(dir.path()).unwrap().count(), 0);
-        write_csv(&path, &["a", "b"], vec![vec![1.0, 2.0]]).unwrap();
-        assert_eq!(fs::read_to_string(&path).unwrap(), "a,b\n1e0,2e0\n");
+        write_csv(
+            &path,
+            &["a", "b", "c", "d"],
+            vec![vec![1.0, 2.5, -0.0, f64::NAN]],
+        )
+        .unwrap();
+        // Integral values as integers, the rest in full-precision exponent form.
+        assert_eq!(
+            fs::read_to_string(&path).unwrap(),
+            "a,b,c,d\n1,2.5e0,0,NaN\n"
+        );
     }
 
     #[test]

@@ -64,7 +64,8 @@ pub fn run(
     let passages = run_passages(&config, shard)?;
     let wall = start.elapsed().as_secs_f64();
     if shard != Shard::ALL {
-        let file = ShardFile::new(scenario, base, shard, &passages, wall);
+        let mut file = ShardFile::new(scenario, base, shard, &passages, wall);
+        file.scenario_file = output::input_name();
         output::write_json(&run_out.path("shard.json"), &file)?;
         run_out.commit()?;
         if !json {
@@ -99,6 +100,14 @@ pub fn merge(dirs: &[PathBuf], out: &Path, json: bool) -> Result<()> {
             .map_err(bad_input)?;
         shards.push((d.clone(), file));
     }
+    output::set_input(
+        shards[0]
+            .1
+            .scenario_file
+            .clone()
+            .unwrap_or_else(|| "the shards' scenario".to_string()),
+        shards[0].1.scenario.clone(),
+    );
     let shards: Vec<(String, ShardFile)> = shards
         .into_iter()
         .map(|(d, f)| (d.display().to_string(), f))
@@ -157,7 +166,7 @@ fn finish(
     let spec = &config.spec;
     let file = shard::report(config, passages, wall).map_err(|e| anyhow!("{e}"))?;
     let summary = &file.results;
-    output::write_json(&run_out.path("summary.json"), &file)?;
+    output::write_summary(&run_out.path("summary.json"), &file)?;
     write_csv(&run_out, spec, passages)?;
     plot_sweep(&run_out, config, summary, passages)?;
     run_out.commit()?;
@@ -262,7 +271,7 @@ fn plot_sweep(
         "envelope",
         along(&s.envelope.max_acceleration, 1.0),
     ));
-    acc_series.push(plot::Series::new(
+    acc_series.push(plot::Series::reference(
         format!(
             "limit {} m/s² ({})",
             s.checks.acceleration_limit, s.checks.track
@@ -391,7 +400,7 @@ fn plot_governing(run_out: &RunOutput, config: &SweepConfig, s: &SweepSummary) -
                 series: vec![plot::Series::new("acceleration", series(|h| h.2, 1.0))],
             },
             plot::Panel {
-                title: "deflection".into(),
+                title: format!("deck deflection at x = {} m", spec.points[0]),
                 x_label: "time [s]".into(),
                 y_label: "deflection [mm]".into(),
                 series: vec![plot::Series::new("deflection", series(|h| h.1, 1e3))],

@@ -139,6 +139,9 @@ pub struct Outcome {
     /// The recorded rows, thinned to at most [`vehicle_bridge_output::PLOT_ROWS`] (for plots).
     rows: Vec<Row>,
     snapshots: Vec<(f64, Vec<(f64, f64)>)>,
+    /// The output point's position and the bridge's length \[m\] (for the plots).
+    output_point: f64,
+    bridge_length: f64,
     /// The train on the bridge at a few instants (trains only).
     train_pictures: Vec<vehicle_bridge_output::TrainPicture>,
     /// The error of the step that failed, when one did (the outputs up to it are written).
@@ -365,9 +368,20 @@ pub fn simulate_full(
         summary,
         rows,
         snapshots: snaps,
+        output_point: sim.scenario().output_point,
+        bridge_length: length,
         train_pictures: pictures,
         failure,
     })
+}
+
+/// "1 step", "2 steps": `n` and the noun, plural when n ≠ 1.
+fn plural(n: usize, noun: &str) -> String {
+    if n == 1 {
+        format!("{n} {noun}")
+    } else {
+        format!("{n} {noun}s")
+    }
 }
 
 /// Prints the readable summary.
@@ -384,13 +398,14 @@ pub fn print_summary(s: &Summary) {
         println!("  dynamic amplification {d:.4}");
     }
     println!(
-        "  contact ({}): force {:.1} … {:.1} N, {} loss-of-contact events{}",
+        "  contact ({}): force {:.1} … {:.1} N, {}{}",
         s.contact.model,
         s.contact.min_force,
         s.contact.max_force,
-        s.contact.loss_of_contact_events,
+        plural(s.contact.loss_of_contact_events, "loss-of-contact event"),
         s.contact
             .max_pressure
+            .filter(|p| *p > 0.0)
             .map(|p| format!(", max pressure {:.1} MPa", 1e-6 * p))
             .unwrap_or_default()
     );
@@ -398,15 +413,28 @@ pub fn print_summary(s: &Summary) {
         "  vehicle: max body acceleration {:.4} m/s²",
         s.vehicle.max_body_acceleration
     );
+    // Radau5 counts the steps its error control rejected; the structural methods count step
+    // attempts whose coupling failed (each retried with half the step).
+    let failed = if s.solver.method == "radau5_newton" {
+        plural(s.solver.failed_steps, "rejected step")
+    } else {
+        plural(s.solver.failed_steps, "failed step attempt")
+    };
     println!(
-        "  solver {} / {}: {} steps, {:.2} iterations/step (max {}), {:.2} contact-solver iterations/step, {} failed steps",
+        "  solver {} / {}: {}, {:.2} iterations/step (max {}){}, {failed}",
         s.solver.method,
         s.solver.integrator,
-        s.solver.steps,
+        plural(s.solver.steps, "step"),
         s.solver.mean_iterations_per_step,
         s.solver.max_iterations_per_step,
-        s.solver.mean_contact_iterations_per_step,
-        s.solver.failed_steps
+        if s.contact.model == "bem" {
+            format!(
+                ", {:.2} contact-solver iterations/step",
+                s.solver.mean_contact_iterations_per_step
+            )
+        } else {
+            String::new()
+        }
     );
     if let Some(t) = &s.traction {
         println!(
@@ -440,8 +468,18 @@ pub fn run(config: VehicleBridgeConfig, out: &Path, json: bool) -> Result<()> {
         snapshots,
         Some(&run_out.path("timeseries.csv")),
     )?;
-    output::write_json(&run_out.path("summary.json"), &outcome.summary)?;
-    vehicle_bridge_output::write_plots(&run_out, &outcome.rows, &outcome.snapshots)?;
+    output::write_summary(&run_out.path("summary.json"), &outcome.summary)?;
+    vehicle_bridge_output::write_plots(
+        &run_out,
+        &outcome.rows,
+        &outcome.snapshots,
+        &vehicle_bridge_output::PlotContext {
+            output_point: outcome.output_point,
+            bridge_length: outcome.bridge_length,
+            static_loads: &outcome.summary.vehicle.static_wheel_loads,
+            contact_model: &outcome.summary.contact.model,
+        },
+    )?;
     if !outcome.train_pictures.is_empty() {
         vehicle_bridge_output::write_train_pictures(&run_out, &outcome.train_pictures)?;
     }
@@ -454,15 +492,20 @@ pub fn run(config: VehicleBridgeConfig, out: &Path, json: bool) -> Result<()> {
         println!("{}", output::json_text(&outcome.summary)?);
     } else {
         print_summary(&outcome.summary);
-        println!(
-            "wrote {}/{}, summary.json, contact_force.png, midspan.png, vehicle.png, pressure.png",
-            out.display(),
-            if completed {
-                "timeseries.csv"
-            } else {
-                "timeseries.partial.csv"
-            }
-        );
+        // The files this run wrote (pressure.png only with contact pressure, traction.png
+        // only with traction, train.png only for trains).
+        let written: Vec<String> = OUTPUT_SET
+            .iter()
+            .map(|name| {
+                if !completed && *name == "timeseries.csv" {
+                    output::partial_name(name)
+                } else {
+                    name.to_string()
+                }
+            })
+            .filter(|name| out.join(name).exists())
+            .collect();
+        println!("wrote {}/{}", out.display(), written.join(", "));
     }
     if let Some(e) = outcome.failure {
         return Err(e.context("the outputs up to the failed step are written (completed = false)"));

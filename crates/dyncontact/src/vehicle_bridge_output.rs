@@ -18,6 +18,7 @@ pub const OUTPUT_SET: &[&str] = &[
     "contact_force.png",
     "midspan.png",
     "vehicle.png",
+    "traction.png",
     "pressure.png",
     "train.png",
 ];
@@ -81,37 +82,38 @@ impl Row {
 /// The CSV header for `nw` wheels (with the three traction columns per wheel when
 /// `with_traction`).
 fn header(nw: usize, with_traction: bool) -> Vec<String> {
+    // Column names: quantity, where, unit (docs/outputs.md); "midspan" is the output point.
     let mut header: Vec<String> = [
-        "t",
-        "midspan_deflection",
-        "midspan_velocity",
-        "midspan_acceleration",
+        "t_s",
+        "deflection_midspan_m",
+        "velocity_midspan_m_s",
+        "acceleration_midspan_m_s2",
         "iterations",
     ]
     .iter()
     .map(|s| s.to_string())
     .collect();
     let per_wheel = [
-        "position",
-        "wheel_z",
-        "body_z",
-        "body_acceleration",
-        "contact_force",
-        "approach",
-        "patch_length",
-        "patch_width",
-        "max_pressure",
-        "longitudinal_force",
-        "creepage",
-        "adhesion_fraction",
+        ("position", "_m"),
+        ("wheel_z", "_m"),
+        ("body_z", "_m"),
+        ("body_acceleration", "_m_s2"),
+        ("contact_force", "_n"),
+        ("approach", "_m"),
+        ("patch_length", "_m"),
+        ("patch_width", "_m"),
+        ("max_pressure", "_pa"),
+        ("longitudinal_force", "_n"),
+        ("creepage", ""),
+        ("adhesion_fraction", ""),
     ];
     let per_wheel = &per_wheel[..if with_traction { 12 } else { 9 }];
     for k in 0..nw {
-        for &name in per_wheel {
+        for &(name, unit) in per_wheel {
             header.push(if nw == 1 {
-                name.to_string()
+                format!("{name}{unit}")
             } else {
-                format!("{name}_{k}")
+                format!("{name}_{k}{unit}")
             });
         }
     }
@@ -184,11 +186,44 @@ impl Recorder {
     }
 }
 
-/// contact_force.png, midspan.png, vehicle.png and pressure.png (when there are snapshots).
+/// What the plots say about the run besides its rows.
+pub struct PlotContext<'a> {
+    /// Position of the output point along the bridge \[m\] and the bridge's length \[m\].
+    pub output_point: f64,
+    pub bridge_length: f64,
+    /// Static wheel loads \[N\] (the contact force at rest).
+    pub static_loads: &'a [f64],
+    /// The contact model's name (`bem` snapshots are piecewise constant per element).
+    pub contact_model: &'a str,
+}
+
+/// The output point named for a title: "x = 12.5 m (midspan of 25 m)".
+fn output_point_words(ctx: &PlotContext) -> String {
+    let x = ctx.output_point;
+    let l = ctx.bridge_length;
+    let place = if (x - 0.5 * l).abs() <= 1e-9 * l {
+        format!("midspan of the {} m bridge", fmt_num(l))
+    } else {
+        format!("{:.3} L of the {} m bridge", x / l, fmt_num(l))
+    };
+    format!("x = {} m, {place}", fmt_num(x))
+}
+
+/// A number without redundant trailing zeros (4 significant decimals at most).
+fn fmt_num(v: f64) -> String {
+    let s = format!("{v:.4}");
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
+/// contact_force.png, midspan.png, vehicle.png, traction.png (runs with traction) and
+/// pressure.png (when a pressure snapshot has contact pressure). One abscissa for the run:
+/// position along the track — each wheel's own position for its contact force (so features of
+/// the track line up across wheels), the leading wheel's position (x₀ + V t) for the rest.
 pub fn write_plots(
     dir: &RunOutput,
     rows: &[Row],
     snapshots: &[(f64, Vec<(f64, f64)>)],
+    ctx: &PlotContext,
 ) -> Result<()> {
     let nw = rows.first().map_or(0, |r| r.wheels.len());
     let wheel_series = |f: &dyn Fn(&Row, usize) -> (f64, f64), name: &str| -> Vec<Series> {
@@ -205,77 +240,184 @@ pub fn write_plots(
             })
             .collect()
     };
+    // The abscissa of the time series: the leading wheel's position [m].
+    let lead = |r: &Row| r.wheels.first().map_or(r.t, |w| w.position);
+    let x_lead = "position of the leading wheel (wheel 0) [m]";
+    let positions = rows
+        .iter()
+        .flat_map(|r| r.wheels.iter().map(|w| w.position));
+    let (x0, x1) = positions.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+        (a.min(x), b.max(x))
+    });
+    let mut force = wheel_series(
+        &|r, k| (r.wheels[k].position, 1e-3 * r.wheels[k].contact.force),
+        "contact force, wheel",
+    );
+    // The static load line(s): one per distinct static load.
+    let mut loads: Vec<f64> = ctx.static_loads.to_vec();
+    loads.sort_by(f64::total_cmp);
+    loads.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * b.abs());
+    for w in &loads {
+        force.push(Series::reference(
+            format!("static wheel load {:.2} kN", 1e-3 * w),
+            vec![(x0, 1e-3 * w), (x1, 1e-3 * w)],
+        ));
+    }
     plot::panels(
         &dir.path("contact_force.png"),
         &[Panel {
-            title: "Contact force against wheel position".into(),
-            x_label: "position [m]".into(),
-            y_label: "force [kN]".into(),
-            series: wheel_series(
-                &|r, k| (r.wheels[k].position, 1e-3 * r.wheels[k].contact.force),
-                "wheel",
+            title: format!(
+                "Wheel–rail contact force ({} contact) against each wheel's position",
+                ctx.contact_model
             ),
+            x_label: "position of the wheel along the track [m]".into(),
+            y_label: "contact force [kN]".into(),
+            series: force,
         }],
     )?;
+    let point = output_point_words(ctx);
     plot::panels(
         &dir.path("midspan.png"),
         &[
             Panel {
-                title: "Bridge deflection at the output point".into(),
-                x_label: "t [s]".into(),
-                y_label: "deflection [mm]".into(),
+                title: format!("Bridge deflection at the output point ({point})"),
+                x_label: x_lead.into(),
+                y_label: "deflection, down positive [mm]".into(),
                 series: vec![Series::new(
-                    "w",
-                    rows.iter().map(|r| (r.t, 1e3 * r.midspan.0)).collect(),
+                    "deflection",
+                    rows.iter().map(|r| (lead(r), 1e3 * r.midspan.0)).collect(),
                 )],
             },
             Panel {
-                title: "Bridge acceleration at the output point".into(),
-                x_label: "t [s]".into(),
+                title: format!("Bridge acceleration at the output point ({point})"),
+                x_label: x_lead.into(),
                 y_label: "acceleration [m/s²]".into(),
                 series: vec![Series::new(
-                    "a",
-                    rows.iter().map(|r| (r.t, r.midspan.2)).collect(),
+                    "acceleration",
+                    rows.iter().map(|r| (lead(r), r.midspan.2)).collect(),
                 )],
             },
         ],
     )?;
-    let mut motion = wheel_series(&|r, k| (r.t, 1e3 * r.wheels[k].wheel_displacement), "wheel");
-    motion.extend(wheel_series(
-        &|r, k| (r.t, 1e3 * r.wheels[k].body_displacement),
-        "body",
-    ));
+    // Displacements from the static start (the first row): the static spring compression
+    // (tens of mm) would otherwise hide the wheel's motion (about a mm).
+    let first = rows.first();
+    let rel = |k: usize, f: &dyn Fn(&WheelSample) -> f64| -> f64 {
+        first.map_or(0.0, |r| f(&r.wheels[k]))
+    };
     plot::panels(
         &dir.path("vehicle.png"),
         &[
             Panel {
-                title: "Wheel and body displacement (down)".into(),
-                x_label: "t [s]".into(),
-                y_label: "z [mm]".into(),
-                series: motion,
+                title: "Car body displacement from its static position (down positive)".into(),
+                x_label: x_lead.into(),
+                y_label: "body displacement [mm]".into(),
+                series: wheel_series(
+                    &|r, k| {
+                        let z = r.wheels[k].body_displacement;
+                        (lead(r), 1e3 * (z - rel(k, &|w| w.body_displacement)))
+                    },
+                    "body on wheel",
+                ),
             },
             Panel {
-                title: "Body acceleration".into(),
-                x_label: "t [s]".into(),
-                y_label: "acceleration [m/s²]".into(),
-                series: wheel_series(&|r, k| (r.t, r.wheels[k].body_acceleration), "body"),
+                title: "Wheel displacement from its static position (down positive)".into(),
+                x_label: x_lead.into(),
+                y_label: "wheel displacement [mm]".into(),
+                series: wheel_series(
+                    &|r, k| {
+                        let z = r.wheels[k].wheel_displacement;
+                        (lead(r), 1e3 * (z - rel(k, &|w| w.wheel_displacement)))
+                    },
+                    "wheel",
+                ),
+            },
+            Panel {
+                title: "Car body acceleration".into(),
+                x_label: x_lead.into(),
+                y_label: "body acceleration [m/s²]".into(),
+                series: wheel_series(
+                    &|r, k| (lead(r), r.wheels[k].body_acceleration),
+                    "body on wheel",
+                ),
             },
         ],
     )?;
-    if !snapshots.is_empty() {
+    if rows.first().is_some_and(|r| !r.traction.is_empty()) {
+        let per_wheel = |f: &dyn Fn(&TractionSample) -> f64, name: &str| -> Vec<Series> {
+            (0..nw)
+                .map(|k| {
+                    Series::new(
+                        if nw == 1 {
+                            name.to_string()
+                        } else {
+                            format!("{name}, wheel {k}")
+                        },
+                        rows.iter()
+                            .map(|r| (lead(r), r.traction.get(k).map_or(f64::NAN, f)))
+                            .collect(),
+                    )
+                })
+                .collect()
+        };
+        plot::panels(
+            &dir.path("traction.png"),
+            &[
+                Panel {
+                    title: "Longitudinal creep force on the wheel (> 0 forward)".into(),
+                    x_label: x_lead.into(),
+                    y_label: "F_x [kN]".into(),
+                    series: per_wheel(&|t| 1e-3 * t.longitudinal_force, "F_x"),
+                },
+                Panel {
+                    title: "Longitudinal creepage ξ = (V − ωR)/V".into(),
+                    x_label: x_lead.into(),
+                    y_label: "creepage ξ [-]".into(),
+                    series: per_wheel(&|t| t.creepage, "creepage"),
+                },
+                Panel {
+                    title: "Fraction of the contact area in adhesion (0: full slip)".into(),
+                    x_label: x_lead.into(),
+                    y_label: "adhesion fraction [-]".into(),
+                    series: per_wheel(&|t| t.adhesion_fraction, "adhesion fraction"),
+                },
+            ],
+        )?;
+    }
+    // Snapshots with contact pressure (none for rigid contact, whose pressure is not
+    // modelled, nor while the wheel is off the rail).
+    let with_pressure: Vec<&(f64, Vec<(f64, f64)>)> = snapshots
+        .iter()
+        .filter(|(_, p)| p.iter().any(|&(_, p)| p > 0.0))
+        .collect();
+    if !with_pressure.is_empty() {
+        let piecewise = ctx.contact_model == "bem";
         plot::panels(
             &dir.path("pressure.png"),
             &[Panel {
-                title: "Contact pressure along the track centreline (wheel 0)".into(),
-                x_label: "ξ (along track, from the wheel) [mm]".into(),
+                title: format!(
+                    "Contact pressure along the track centreline, wheel 0 ({} contact{})",
+                    ctx.contact_model,
+                    if piecewise {
+                        ", constant per element"
+                    } else {
+                        ""
+                    }
+                ),
+                x_label: "ξ (along the track, from the wheel) [mm]".into(),
                 y_label: "pressure [MPa]".into(),
-                series: snapshots
+                series: with_pressure
                     .iter()
                     .map(|(x, p)| {
-                        Series::new(
-                            format!("x = {x:.2} m"),
-                            p.iter().map(|(xi, p)| (1e3 * xi, 1e-6 * p)).collect(),
-                        )
+                        let label = format!("wheel 0 at x = {x:.2} m");
+                        let cells: Vec<(f64, f64)> =
+                            p.iter().map(|(xi, p)| (1e3 * xi, 1e-6 * p)).collect();
+                        if piecewise && cells.len() > 1 {
+                            let width = cells[1].0 - cells[0].0;
+                            Series::steps(label, &cells, width)
+                        } else {
+                            Series::new(label, cells)
+                        }
                     })
                     .collect(),
             }],
@@ -399,9 +541,11 @@ mod tests {
     fn header_has_the_traction_columns_after_each_wheel() {
         let h = header(2, true);
         assert_eq!(h.len(), 5 + 2 * 12);
-        assert_eq!(h[5 + 8], "max_pressure_0");
-        assert_eq!(h[5 + 9], "longitudinal_force_0");
-        assert_eq!(h[5 + 12], "position_1");
-        assert_eq!(header(1, false)[5..7], ["position", "wheel_z"]);
+        assert_eq!(h[0], "t_s");
+        assert_eq!(h[5 + 8], "max_pressure_0_pa");
+        assert_eq!(h[5 + 9], "longitudinal_force_0_n");
+        assert_eq!(h[5 + 10], "creepage_0");
+        assert_eq!(h[5 + 12], "position_1_m");
+        assert_eq!(header(1, false)[5..7], ["position_m", "wheel_z_m"]);
     }
 }

@@ -5,7 +5,7 @@ mod support;
 
 use support::{dyncontact, write};
 
-/// The brief's scenario, shortened to 0.3 s (one impact at t = √(2h/g) = 0.1428 s).
+/// The reference drop (references.md §C4.10), shortened to 0.3 s (one impact at t = √(2h/g) = 0.1428 s).
 const VALID: &str = r#"
 kind = "ball_drop"
 duration = 0.3
@@ -79,7 +79,7 @@ fn json_summary_and_files() {
     assert!((imp["rebound_velocity"].as_f64().unwrap() - 1.4007141).abs() < 1e-5);
     assert!(((v["restitution"].as_f64().unwrap()) - 1.0).abs() < 1e-5);
     let csv = std::fs::read_to_string(out.join("timeseries.csv")).unwrap();
-    assert!(csv.starts_with("t,z,v,a,approach,force,energy\n"));
+    assert!(csv.starts_with("t_s,z_m,v_m_s,a_m_s2,approach_m,force_n,energy_j\n"));
     assert!(csv.lines().count() > 100);
     assert!(out.join("summary.json").exists() && out.join("ball_drop.png").exists());
     let written: serde_json::Value =

@@ -91,7 +91,7 @@ supports_at = [0.0, 20.0, 40.0]
     assert!((v["modes"][0]["omega"].as_f64().unwrap() / w1 - 1.0).abs() < 1e-7);
     assert!((v["modes"][1]["omega"].as_f64().unwrap() / w2 - 1.0).abs() < 1e-7);
     let csv = std::fs::read_to_string(out_dir.join("mode_shapes.csv")).unwrap();
-    assert!(csv.starts_with("x,w1,w2,w3\n"));
+    assert!(csv.starts_with("x_m,w1_1_sqrt_kg,w2_1_sqrt_kg,w3_1_sqrt_kg\n"));
     assert_eq!(
         &std::fs::read(out_dir.join("modes.png")).unwrap()[1..4],
         b"PNG"
@@ -135,7 +135,7 @@ fn moving_force_reproduces_frybas_table() {
     }
     assert_eq!(v["modes_used"].as_u64().unwrap(), 20);
     let csv = std::fs::read_to_string(out_dir.join("timeseries.csv")).unwrap();
-    assert!(csv.starts_with("t,load_position,deflection_midspan,"));
+    assert!(csv.starts_with("t_s,load_position_m,deflection_midspan_m,"));
     assert!(out_dir.join("midspan_deflection.png").exists());
 }
 

@@ -82,7 +82,7 @@ fn out_dir_gets_csv_png_and_summary() {
         String::from_utf8_lossy(&out.stderr)
     );
     let csv = std::fs::read_to_string(out_dir.join("pressure.csv")).unwrap();
-    assert!(csv.starts_with("x,y,p\n"));
+    assert!(csv.starts_with("x_m,y_m,p_pa\n"));
     assert_eq!(csv.lines().count(), 1 + 48 * 48);
     let png = std::fs::read(out_dir.join("pressure.png")).unwrap();
     assert_eq!(&png[1..4], b"PNG");

@@ -12,7 +12,7 @@ mod support;
 
 use std::collections::BTreeSet;
 
-use support::{dyncontact, example, num};
+use support::{PLOT_REPORT_ENV, check_plot_report, dyncontact, dyncontact_env, example, num};
 
 /// One quoted number: JSON pointer, quoted value, allowed absolute deviation, where quoted.
 struct Quote {
@@ -48,19 +48,22 @@ fn full(pointer: &'static str, value: f64) -> Quote {
     }
 }
 
-/// Run `examples/FILE` with `args` (the file is inserted after the first argument), `--json`,
-/// and check every quote.
+/// Run `examples/FILE` with `args` (the file is inserted after the first argument), `--json`
+/// and an output directory, check every quote, and check every plot it drew
+/// (`support::check_plot_report`: data inside the axes, legends with drawn lines, equal
+/// scales of maps, ...).
 fn check(file: &str, args: &[&str], quotes: &[Quote], source: &str) {
     let dir = tempfile::tempdir().unwrap();
     let path = example(file);
     let out_dir = dir.path().join("out");
     let mut argv: Vec<&str> = vec![args[0], path.to_str().unwrap()];
     argv.extend_from_slice(&args[1..]);
-    if args[0] == "run" || args[0] == "creep-curve" || args[0] == "sweep" {
+    if ["run", "creep-curve", "sweep", "contact", "modes"].contains(&args[0]) {
         argv.extend(["--out", out_dir.to_str().unwrap()]);
     }
     argv.push("--json");
-    let o = dyncontact(&argv);
+    let report = dir.path().join("plots.jsonl");
+    let o = dyncontact_env(&argv, &[(PLOT_REPORT_ENV, report.as_os_str())]);
     assert!(
         o.status.success(),
         "{file}: {}",
@@ -78,6 +81,8 @@ fn check(file: &str, args: &[&str], quotes: &[Quote], source: &str) {
         }
     }
     assert!(failures.is_empty(), "{file}:\n{}", failures.join("\n"));
+    let figures = check_plot_report(&report, &out_dir, file);
+    assert!(figures > 0, "{file}: no plot drawn");
 }
 
 /// Every example file is checked by a test in this file (a new example needs its golden).
@@ -99,6 +104,32 @@ fn every_example_has_a_golden_test() {
         missing.is_empty(),
         "examples without a golden test: {missing:?}"
     );
+}
+
+/// Every example names its `kind`, so `dyncontact run FILE` accepts each of them (the contact
+/// cases, tangential ones included, also run with `dyncontact contact`).
+#[test]
+fn every_example_names_its_kind() {
+    let kinds = [
+        "ball_drop",
+        "contact",
+        "moving_load",
+        "sweep",
+        "vehicle_bridge",
+    ];
+    for entry in std::fs::read_dir(example("")).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_none_or(|e| e != "toml") {
+            continue;
+        }
+        let table: toml::Table = toml::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        let kind = table.get("kind").and_then(|k| k.as_str());
+        assert!(
+            kind.is_some_and(|k| kinds.contains(&k)),
+            "{}: kind = {kind:?}",
+            path.display()
+        );
+    }
 }
 
 /// The built-in default of `dyncontact run` is the example file itself (one copy).
@@ -156,8 +187,56 @@ fn contact_examples_match_the_readme_table() {
     check(
         "wavy_table.toml",
         &["contact"],
-        &[n("iterations", 13.0), q("normal_force", 26.8, 0.1)],
+        &[
+            n("iterations", 13.0),
+            q("normal_force", 26.8, 0.1),
+            n("elements_in_contact", 244.0),
+        ],
         readme,
+    );
+    // "one patch, 0.125 mm × 0.4 mm": the loaded elements form one 4-connected region
+    // spanning 10 × 32 elements of 12.5 µm.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = dyncontact(&[
+        "contact",
+        example("wavy_table.toml").to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success());
+    let text = std::fs::read_to_string(out.join("pressure.csv")).unwrap();
+    let h = 12.5e-6;
+    let cell = |x: f64| ((x + 0.4e-3) / h - 0.5).round() as usize;
+    let loaded: BTreeSet<(usize, usize)> = text
+        .lines()
+        .skip(1)
+        .filter_map(|l| {
+            let v: Vec<f64> = l.split(',').map(|s| s.parse().unwrap()).collect();
+            (v[2] > 0.0).then(|| (cell(v[0]), cell(v[1])))
+        })
+        .collect();
+    let mut seen = BTreeSet::new();
+    let mut stack = vec![*loaded.iter().next().unwrap()];
+    while let Some((i, j)) = stack.pop() {
+        if !loaded.contains(&(i, j)) || !seen.insert((i, j)) {
+            continue;
+        }
+        stack.extend([
+            (i + 1, j),
+            (i.wrapping_sub(1), j),
+            (i, j + 1),
+            (i, j.wrapping_sub(1)),
+        ]);
+    }
+    assert_eq!(seen.len(), loaded.len(), "the patch is not one region");
+    let span = |f: fn(&(usize, usize)) -> usize| {
+        loaded.iter().map(f).max().unwrap() - loaded.iter().map(f).min().unwrap() + 1
+    };
+    assert_eq!(
+        (span(|c| c.0), span(|c| c.1)),
+        (10, 32),
+        "extent in elements"
     );
 }
 
@@ -170,8 +249,13 @@ fn tangential_examples_match_the_docs() {
         &["contact"],
         &[
             q("tangential_force_x", 6.960208e3, 0.000001e3),
+            q("tangential_force_y", 0.0, 0.0),
+            q("creepage_x", -2.4e-4, 1e-10),
             n("adhesion_elements", 30.0),
             n("slip_elements", 21.0),
+            q("frictional_power", 1.588420, 0.000001),
+            n("tangential_iterations", 323.0),
+            n("newton_iterations", 0.0),
         ],
         docs,
     );
@@ -183,6 +267,9 @@ fn tangential_examples_match_the_docs() {
             q("shift_x", 8.154887e-6, 0.000001e-6),
             n("adhesion_elements", 45.0),
             n("slip_elements", 132.0),
+            q("frictional_power", 2.749637e-6, 0.000001e-6),
+            n("tangential_iterations", 188.0),
+            n("newton_iterations", 3.0),
         ],
         docs,
     );
@@ -194,9 +281,60 @@ fn tangential_examples_match_the_docs() {
             n("adhesion_elements", 836.0),
             n("slip_elements", 560.0),
             n("tangential_iterations", 41.0),
+            q("frictional_power", 18.06, 0.01),
         ],
         docs,
     );
+    // docs/tangential.md, the creep-curve table (9 points): F_x/(μF_n) of the exact solver,
+    // FASTSIM and the linear theory, adhesion/slip elements and sweeps per point.
+    let mu_fn = 0.3 * 106.7e3;
+    let table: [(f64, f64, f64, f64, f64); 9] = [
+        (0.00000, 0.00000, -0.00000, 1396.0, 0.0),
+        (-0.34540, -0.35986, -0.38003, 1114.0, 45.0),
+        (-0.60901, -0.62361, -0.76007, 836.0, 40.0),
+        (-0.79753, -0.78214, -1.14010, 574.0, 35.0),
+        (-0.91806, -0.87028, -1.52013, 334.0, 29.0),
+        (-0.98066, -0.91945, -1.90017, 148.0, 25.0),
+        (-0.99870, -0.94775, -2.28020, 10.0, 19.0),
+        (-0.99920, -0.96458, -2.66023, 0.0, 15.0),
+        (-0.99938, -0.97535, -3.04027, 0.0, 13.0),
+    ];
+    let pointers: Vec<[String; 6]> = (0..9)
+        .map(|k| {
+            [
+                "exact_force_x",
+                "fastsim_force_x",
+                "linear_force_x",
+                "exact_adhesion_elements",
+                "exact_slip_elements",
+                "exact_sweeps",
+            ]
+            .map(|key| format!("points/{k}/{key}"))
+        })
+        .collect();
+    let mut quotes = Vec::new();
+    for (k, &(exact, fastsim, linear, adhesion, sweeps)) in table.iter().enumerate() {
+        let p = &pointers[k];
+        // Forces are quoted as F/(μF_n) to 5 decimals: one unit of the last digit times μF_n.
+        let unit = 1e-5 * mu_fn;
+        quotes.push(q(leak(&p[0]), exact * mu_fn, unit));
+        quotes.push(q(leak(&p[1]), fastsim * mu_fn, unit));
+        quotes.push(q(leak(&p[2]), linear * mu_fn, unit));
+        quotes.push(n(leak(&p[3]), adhesion));
+        quotes.push(n(leak(&p[4]), 1396.0 - adhesion));
+        quotes.push(n(leak(&p[5]), sweeps));
+    }
+    check(
+        "tangential_rolling.toml",
+        &["creep-curve", "--creepage-x", "0:0.004:9"],
+        &quotes,
+        "docs/tangential.md (creep-curve table)",
+    );
+}
+
+/// A pointer built at run time, as the `&'static str` of a [`Quote`].
+fn leak(s: &str) -> &'static str {
+    Box::leak(s.to_string().into_boxed_str())
 }
 
 /// docs/ball_drop.md, "Worked example".
@@ -218,6 +356,18 @@ fn ball_drop_examples_match_the_docs() {
             n("integrator/steps", 306.0),
             n("integrator/rejected_steps", 102.0),
             n("integrator/f_evals", 2545.0),
+        ],
+        docs,
+    );
+    // docs/ball_drop.md: `--integrator verlet` on the steel example.
+    check(
+        "ball_drop_steel.toml",
+        &["run", "--integrator", "verlet"],
+        &[
+            q("impacts/3/time", 0.99964, 0.00001),
+            q("impacts/0/peak_force", 3462.4, 0.1),
+            q("restitution", 1.00001, 0.00001),
+            q("energy_drift", 2.2e-5, 0.1e-5),
         ],
         docs,
     );
@@ -371,9 +521,47 @@ fn vehicle_bridge_examples_match_the_docs() {
             n("solver/steps", 3334.0),
             n("solver/failed_steps", 0.0),
             q("solver/mean_iterations_per_step", 1.01, 0.01),
+            n("solver/max_iterations_per_step", 2.0),
             q("solver/mean_contact_iterations_per_step", 4.41, 0.01),
+            n("contact/loss_of_contact_events", 0.0),
         ],
         docs,
+    );
+    // "The patch is 13.0 mm long and 9.8 mm wide at the start (static load), peak pressure
+    // 1055 MPa": the first row of timeseries.csv.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = dyncontact(&[
+        "run",
+        example("vehicle_bridge_default.toml").to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success());
+    let csv = std::fs::read_to_string(out.join("timeseries.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let first: Vec<f64> = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    let col = |name: &str| first[header.iter().position(|h| *h == name).unwrap()];
+    assert!(
+        (1e3 * col("patch_length_m") - 13.0).abs() <= 0.05,
+        "{}",
+        col("patch_length_m")
+    );
+    assert!(
+        (1e3 * col("patch_width_m") - 9.8).abs() <= 0.05,
+        "{}",
+        col("patch_width_m")
+    );
+    assert!(
+        (1e-6 * col("max_pressure_pa") - 1055.0).abs() <= 0.5,
+        "{}",
+        col("max_pressure_pa")
     );
     check(
         "vehicle_bridge_biggs.toml",
@@ -425,6 +613,12 @@ fn vehicle_bridge_examples_match_the_docs() {
             q("traction/max_longitudinal_force", -15621.9, 0.1),
             q("traction/mean_longitudinal_force", -14542.3, 0.1),
             n("traction/saturated_steps", 0.0),
+            // The prescribed creepage fixes the rotation: ω = V(1 − ξ)/R = 30 × 0.998/0.46.
+            q(
+                "traction/final_angular_velocity/0",
+                30.0 * 0.998 / 0.46,
+                1e-9,
+            ),
         ],
         docs,
     );

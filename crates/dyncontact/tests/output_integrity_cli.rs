@@ -223,7 +223,11 @@ fn concurrent_runs_into_one_directory_do_not_interleave() {
         }
         let rows = check_csv(&out.join("timeseries.csv"));
         let text = std::fs::read_to_string(out.join("timeseries.csv")).unwrap();
-        assert_eq!(text.matches("t,").count(), 1, "trial {trial}: two headers");
+        assert_eq!(
+            text.matches("t_s,").count(),
+            1,
+            "trial {trial}: two headers"
+        );
         let summary: serde_json::Value =
             serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
                 .unwrap();

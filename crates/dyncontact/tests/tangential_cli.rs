@@ -127,7 +127,7 @@ fn methods_and_forces_through_the_cli() {
         assert!(out.join(name).exists(), "missing {name}");
     }
     let csv = std::fs::read_to_string(out.join("traction.csv")).unwrap();
-    assert!(csv.starts_with("x,y,px,py,state,slip_x,slip_y\n"));
+    assert!(csv.starts_with("x_m,y_m,px_pa,py_pa,state,slip_x,slip_y\n"));
     assert_eq!(csv.lines().count(), 1 + 400);
 }
 

@@ -100,17 +100,17 @@ fn crawl_to_midspan_gives_static_deflection_and_outputs() {
     let csv = std::fs::read_to_string(dir.path().join("out/timeseries.csv")).unwrap();
     let header = csv.lines().next().unwrap();
     for col in [
-        "t",
-        "midspan_deflection",
-        "midspan_acceleration",
-        "position",
-        "wheel_z",
-        "body_acceleration",
-        "contact_force",
-        "approach",
-        "patch_length",
-        "patch_width",
-        "max_pressure",
+        "t_s",
+        "deflection_midspan_m",
+        "acceleration_midspan_m_s2",
+        "position_m",
+        "wheel_z_m",
+        "body_acceleration_m_s2",
+        "contact_force_n",
+        "approach_m",
+        "patch_length_m",
+        "patch_width_m",
+        "max_pressure_pa",
     ] {
         assert!(header.split(',').any(|h| h == col), "column {col}");
     }

@@ -56,7 +56,7 @@ fn radau5_example_runs_and_agrees_with_generalized_alpha() {
             std::fs::read_to_string(dir.path().join(format!("{name}.out/timeseries.csv"))).unwrap();
         let mut lines = text.lines();
         let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-        let col = header.iter().position(|h| *h == "contact_force").unwrap();
+        let col = header.iter().position(|h| *h == "contact_force_n").unwrap();
         lines
             .map(|l| l.split(',').nth(col).unwrap().parse::<f64>().unwrap())
             .fold((f64::NEG_INFINITY, f64::INFINITY), |(hi, lo), f| {

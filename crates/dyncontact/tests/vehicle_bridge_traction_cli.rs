@@ -103,7 +103,7 @@ fn linear_braking_reports_kalker_force() {
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
     let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
     let (fx, xi, adh) = (
-        col("longitudinal_force"),
+        col("longitudinal_force_n"),
         col("creepage"),
         col("adhesion_fraction"),
     );
@@ -173,16 +173,20 @@ fn two_wheels_get_their_own_traction_columns() {
         .collect();
     let mat = Material::identical(G.youngs_modulus, G.poisson_ratio).unwrap();
     for (k, p) in [(0, 50e3), (1, 40e3)] {
-        let col = |name: &str| {
+        // Wheel k's column: the index before the unit (`contact_force_1_n`, `creepage_1`).
+        let col = |name: &str, unit: &str| {
             header
                 .iter()
-                .position(|h| *h == format!("{name}_{k}"))
+                .position(|h| *h == format!("{name}_{k}{unit}"))
                 .unwrap()
         };
-        assert_eq!(col("longitudinal_force"), col("max_pressure") + 1);
-        assert_eq!(col("adhesion_fraction"), col("max_pressure") + 3);
+        assert_eq!(
+            col("longitudinal_force", "_n"),
+            col("max_pressure", "_pa") + 1
+        );
+        assert_eq!(col("adhesion_fraction", ""), col("max_pressure", "_pa") + 3);
         let w = 600.0 * 9.81 + p;
-        assert!((last[col("contact_force")] / w - 1.0).abs() < 1e-9);
+        assert!((last[col("contact_force", "_n")] / w - 1.0).abs() < 1e-9);
         let h = Hertz::elliptic(
             0.5 / G.wheel_radius,
             0.5 / G.rail_profile_radius,
@@ -192,8 +196,8 @@ fn two_wheels_get_their_own_traction_columns() {
         .unwrap();
         let c11 = creep_coefficients(h.a, h.b, G.poisson_ratio).unwrap().c11;
         let reference = -mat.g * h.a * h.b * c11 * 1e-4;
-        assert!((last[col("longitudinal_force")] / reference - 1.0).abs() < 1e-9);
-        assert_eq!(last[col("creepage")], 1e-4);
+        assert!((last[col("longitudinal_force", "_n")] / reference - 1.0).abs() < 1e-9);
+        assert_eq!(last[col("creepage", "")], 1e-4);
     }
     // The shipped braking example, shortened to 40 steps: it runs, and its FASTSIM braking force
     // at ξ = 2e-3 lies between 0.5 and 1 × μF_n (the linear theory would exceed μF_n; the

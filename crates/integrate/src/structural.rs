@@ -18,7 +18,7 @@
 //! | Newmark-β (average acceleration by default) | implicit | 2 if γ = ½, else 1 | Newmark (1959), references.md §D3.5 |
 //! | HHT-α, α ∈ [−1/3, 0] | implicit | 2 | Hilber, Hughes & Taylor (1977) |
 //! | generalized-α by ρ∞ ∈ [0, 1] | implicit | 2 | Chung & Hulbert (1993) |
-//! | backward Euler (second-order form) | implicit | 1 | the project's founding talk (seed) |
+//! | backward Euler (second-order form) | implicit | 1 | references.md §D4.4 |
 //!
 //! # The step equation
 //! Every implicit scheme is written in one form (the generalized-α form of Chung & Hulbert,

@@ -1,7 +1,7 @@
 //! Observed orders of convergence of every method on problems with exact solutions, measured by
 //! halving the (fixed) step: harmonic oscillator y'' = −y to T = 2 (exact (cos T, −sin T)) and
 //! linear decay y' = −y to T = 2 (exact e^{−T}). Each observed order log2(e(h)/e(h/2)) must
-//! equal the theoretical order within ±0.2 (the brief's band; the step ranges are chosen in the
+//! equal the theoretical order within ±0.2 (references.md §R5.1; the step ranges are chosen in the
 //! asymptotic regime and above round-off, which the printed errors document).
 
 mod ode_support;

@@ -116,7 +116,7 @@ fn free_fall_impact_time_to_1e_10() {
 
 /// Hertz impact at V = 1 m/s from a gap of 0.1 mm, gravity off (the closed form has none):
 /// contact start and end events, maximum approach at v = 0, peak force and contact duration
-/// within 0.1 % of the closed form (the brief's band; the constant 2.9432 has 5 digits), and
+/// within 0.1 % of the closed form (references.md §R5.1; the constant 2.9432 has 5 digits), and
 /// the rebound speed equal to the impact speed within 1e-4 (elastic: energy conserved).
 #[test]
 fn hertz_impact_matches_closed_form_for_dopri5_radau5_bdf() {

@@ -191,8 +191,8 @@ fn bad_problems_and_states_are_rejected() {
 }
 
 #[test]
-fn backward_euler_step_is_the_seed_linear_system() {
-    // The founding talk writes one backward-Euler step of a mode c'' = −ω²c as
+fn backward_euler_step_is_the_baseline_linear_system() {
+    // references.md §D4.4 writes one backward-Euler step of a mode c'' = −ω²c as
     // [[1, −Δt], [Δt ω², 1]] (c, ċ)^{k+1} = (c, ċ)^k, solved here by Cramer's rule.
     let (omega, dt, q0, v0) = (3.0_f64, 0.07, 0.4, -1.1);
     let mut p = oscillator(omega);

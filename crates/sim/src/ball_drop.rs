@@ -290,7 +290,7 @@ pub struct BallDrop {
 }
 
 impl BallDrop {
-    /// The brief's steel ball: R = 10 mm, ρ = 7850 kg/m³, rigid, on steel (E = 210 GPa,
+    /// The reference steel ball (references.md §C4.10): R = 10 mm, ρ = 7850 kg/m³, rigid, on steel (E = 210 GPa,
     /// ν = 0.3), dropped from 0.1 m at rest, g = 9.81, 1 s, Hertz, Radau5 at rtol 1e-8.
     pub fn steel_ball() -> Self {
         let radius = 0.01;

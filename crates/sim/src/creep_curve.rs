@@ -44,6 +44,9 @@ pub struct CurvePoint {
     pub creepage_x: f64,
     pub creepage_y: f64,
     pub spin: f64,
+    /// Whether the exact solver converged at this point (false: the exact forces are NaN,
+    /// null in JSON; the point is kept and the caller reports it).
+    pub exact_converged: bool,
     pub exact_force_x: f64,
     pub exact_force_y: f64,
     pub exact_spin_moment: f64,
@@ -108,6 +111,29 @@ pub enum CreepCurveError {
     Interrupted(usize),
 }
 
+/// The exact solver's result at one point.
+struct ExactPoint {
+    force_x: f64,
+    force_y: f64,
+    moment_z: f64,
+    adhesion_elements: usize,
+    slip_elements: usize,
+    sweeps: usize,
+}
+
+impl ExactPoint {
+    fn of(s: &halfspace::TangentialSolution) -> Self {
+        ExactPoint {
+            force_x: s.force_x,
+            force_y: s.force_y,
+            moment_z: s.moment_z,
+            adhesion_elements: s.adhesion_elements,
+            slip_elements: s.slip_elements,
+            sweeps: s.iterations,
+        }
+    }
+}
+
 /// The friction coefficient and the held creepages of a creep-curve case (checked before any
 /// solve).
 pub fn check(case: &PreparedCase) -> Result<(f64, Creepages), CreepCurveError> {
@@ -161,7 +187,20 @@ pub fn compute(
         }
         let t0 = Instant::now();
         let load = RollingLoad::Creepages(c);
-        let s = if coupled {
+        let exact = if c.xi == 0.0 && c.eta == 0.0 && c.phi == 0.0 {
+            // No creepage: the unique steady-rolling solution is traction-free, every loaded
+            // element in adhesion (no slip velocity). The iterative solver's relative-change
+            // test has nothing to measure against here, so it is not called.
+            let loaded = normal.pressure.iter().filter(|&&p| p > 0.0).count();
+            Ok(ExactPoint {
+                force_x: 0.0,
+                force_y: 0.0,
+                moment_z: 0.0,
+                adhesion_elements: loaded,
+                slip_elements: 0,
+                sweeps: 0,
+            })
+        } else if coupled {
             solve_coupled(
                 &mut normal_solver,
                 &mut solver,
@@ -173,15 +212,39 @@ pub fn compute(
                 &opts,
                 &CoupledOptions::default(),
             )
-            .map(|c| c.tangential)
+            .map(|c| ExactPoint::of(&c.tangential))
         } else {
-            solver.steady_rolling(&normal.pressure, mu, load, &opts)
-        }
-        .map_err(|source| CreepCurveError::Exact {
-            label: label.to_string(),
-            value: v,
-            source,
-        })?;
+            solver
+                .steady_rolling(&normal.pressure, mu, load, &opts)
+                .map(|s| ExactPoint::of(&s))
+        };
+        let (s, converged) = match exact {
+            Ok(s) => (s, true),
+            // Keep the curve: the point is kept with exact_converged = false and no exact
+            // forces; the other points stand.
+            Err(
+                ContactError::TangentialNotConverged { .. }
+                | ContactError::NotConverged { .. }
+                | ContactError::NewtonNotConverged { .. },
+            ) => (
+                ExactPoint {
+                    force_x: f64::NAN,
+                    force_y: f64::NAN,
+                    moment_z: f64::NAN,
+                    adhesion_elements: 0,
+                    slip_elements: 0,
+                    sweeps: opts.max_iter,
+                },
+                false,
+            ),
+            Err(source) => {
+                return Err(CreepCurveError::Exact {
+                    label: label.to_string(),
+                    value: v,
+                    source,
+                });
+            }
+        };
         exact_time += t0.elapsed().as_secs_f64();
         let (mut fsx, mut fsy, mut lx, mut ly) = (None, None, None, None);
         if let Some((a, b)) = axes {
@@ -200,12 +263,13 @@ pub fn compute(
             creepage_x: c.xi,
             creepage_y: c.eta,
             spin: c.phi,
+            exact_converged: converged,
             exact_force_x: s.force_x,
             exact_force_y: s.force_y,
             exact_spin_moment: s.moment_z,
             exact_adhesion_elements: s.adhesion_elements,
             exact_slip_elements: s.slip_elements,
-            exact_sweeps: s.iterations,
+            exact_sweeps: s.sweeps,
             fastsim_force_x: fsx,
             fastsim_force_y: fsy,
             linear_force_x: lx,

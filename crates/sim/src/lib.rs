@@ -2,10 +2,10 @@
 //! combined into simulations. No I/O: the CLI reads scenario files and writes results.
 //!
 //! * [`ball_drop`]: a rigid or elastic ball dropped on an elastic half-space,
-//!   m z'' = F_n(δ) − m g (issue "time integration library and the ball drop");
+//!   m z'' = F_n(δ) − m g (docs/ball_drop.md);
 //! * [`vehicle_bridge`]: wheels (moving force, moving mass, quarter car, several axles) over a
 //!   modal Euler–Bernoulli bridge with Hertz or boundary-element contact, coupled every time
-//!   step (Picard, the seed's quasi-Newton/Sherman–Morrison, Woodbury, Newton);
+//!   step (Picard, quasi-Newton/Sherman–Morrison (references.md §D4.4), Woodbury, Newton);
 //! * [`contact_case`]: a contact case solved (normal, tangential) with its summary;
 //! * [`creep_curve`]: creep force against creepage (exact, FASTSIM, linear theory);
 //! * [`modes`]: the modal table and mode shapes of a bridge;

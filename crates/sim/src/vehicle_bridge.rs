@@ -1,11 +1,11 @@
-//! Wheels over a modal bridge with local contact, coupled at every time step (the founding
-//! talk's central result; references.md §D1.1–1.3, §2.2–2.5, §4.2–4.3).
+//! Wheels over a modal bridge with local contact, coupled at every time step (the
+//! baseline model of references.md §D4.4; §D1.1–1.3, §D2.2–2.5, §D4.2–4.3).
 //!
 //! # Model (SI units; displacements positive downwards)
 //! * Bridge: a mass-normalised modal basis ([`beam::ModalBasis`], analytic or FE),
 //!   `q_j'' + c_j q_j' + ω_j² q_j = Σ_k I_jk`, with the modal damping `c_j` of
 //!   [`beam::ModalDamping`] and the modal loads of wheel k `I_jk = Σ_i F_ki w_j(x_k + ξ_i)`
-//!   (the seed's ∫ p w_j dx, with F_ki the force carried by grid column i of the contact);
+//!   (∫ p w_j dx of references.md §D4.4, with F_ki the force carried by grid column i of the contact);
 //!   deflection `w(x, t) = Σ_j q_j(t) w_j(x)`, zero off the span (rigid approach track).
 //! * Wheel k at `x_k(t) = x_k0 + c t` with mass m_w, a sprung body m_b on a spring–damper
 //!   (k_s, c_s), and a constant extra load P:
@@ -42,7 +42,7 @@
 //! (v_k: −w_j(x_k) on the modes, +1 on the wheel), the solvers ([`CouplingSolver`]) are
 //! * `picard`: `x ← A⁻¹(r + s Σ G_k(x))` (contact force lagged); its error map is
 //!   `e ← −λ e` with `λ = s k_c vᵀA⁻¹ĝ` (= k_c c_Δt), so it converges iff λ < 1;
-//! * `quasi_newton` (the seed): the forces are linearised in the approach only (the pressure
+//! * `quasi_newton` (the baseline coupling, references.md §D4.4): the forces are linearised in the approach only (the pressure
 //!   shape ĝ_k is lagged), `J = A + s Σ_k k_c ĝ_k v_kᵀ`, solved by Sherman–Morrison (one wheel,
 //!   denominator 1 + λ) or Woodbury (k wheels, k × k capacitance matrix) in O(n) per
 //!   iteration ([`linalg::contact_update`]);

@@ -1,5 +1,5 @@
 //! The boundary-element force model against Hertz (references.md §C4.10: "ball drop plus
-//! CONTACT-style normal solver plus time integrator"): the brief's steel ball at 1 m/s,
+//! CONTACT-style normal solver plus time integrator"): the reference steel ball (references.md §C4.10) at 1 m/s,
 //! gravity off, Radau5 at rtol 1e-6, the exact sphere gap on automatic 16 × 16 and 32 × 32
 //! grids sized for the Hertz patch at δ*.
 

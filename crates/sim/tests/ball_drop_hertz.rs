@@ -1,4 +1,4 @@
-//! Hertz impact of the brief's steel ball (references.md §C4.10, references.md §D1.4): R = 10 mm,
+//! Hertz impact of the reference steel ball (references.md §C4.10, references.md §D1.4): R = 10 mm,
 //! ρ = 7850 kg/m³, rigid, on steel (E = 210 GPa, ν = 0.3) at V = 1 m/s, gravity off (the
 //! closed form has none): δ* = 17.795 µm, P* = 2309.8 N, T_c = 52.37 µs (published, rounded
 //! to 4–5 digits), rebound speed = impact speed.
@@ -60,7 +60,7 @@ fn closed_form_matches_the_published_numbers() {
 }
 
 /// The adaptive methods at rtol 1e-10: maximum approach, peak force and contact duration
-/// within 0.1 % of the published numbers (the brief's band) and within 1e-7 of the closed
+/// within 0.1 % of the published numbers (references.md §R5.1) and within 1e-7 of the closed
 /// form computed to full precision (measured ≤ 4e-9; the events are located on the dense
 /// output, whose error is of the order of the tolerance); rebound speed = impact speed to 1e-7
 /// (measured ≤ 5.1e-9); energy drift below 1e-7 (measured ≤ 1.7e-8).
@@ -178,7 +178,7 @@ fn fixed_step_methods_have_their_orders_and_energy_behaviour() {
     }
 }
 
-/// Drop from 0.1 m at rest over 1 s with g = 9.81 (the brief's scenario): with the free-fall
+/// Drop from 0.1 m at rest over 1 s with g = 9.81 (the reference drop, references.md §C4.10): with the free-fall
 /// time t_f = √(2h/g) the impacts are at t_k = (2k + 1) t_f + k t_c (4 in 1 s); each impact
 /// speed is √(2gh); the peak force equals the energy-balance closed form
 /// (2/5)Kδ*^{5/2} = ½mv² + mgδ*. Radau5 at rtol 1e-8 (guarded): times within 1e-6 s (the

@@ -45,7 +45,7 @@ fn verlet_with_the_default_step_matches_the_closed_form_peak_force() {
         r.energy_drift,
         r.accuracy_flags
     );
-    // Before the refinement this case was 7,345× too high; the brief's bound is 5 %.
+    // Before the refinement this case was 7,345× too high; the bound of references.md §R5.1 is 5 %.
     assert!(rel.abs() < 0.05, "peak force off by {rel:+.3e}");
     assert!(r.plan.refined);
     let step = r.plan.contact_step.unwrap();

@@ -58,7 +58,7 @@ fn run(contact: ContactModel) -> (Vec<f64>, Vec<f64>, Simulation) {
 
 /// A quarter car (600 kg wheel, 5750 kg body: W = 62.3 kN) runs over a 0.5 mm dip: the force
 /// histories with the BEM law (32 × 32 grid, NormCG tol 1e-10) and the Hertz law agree within
-/// 1 % of the peak force (the bound). The difference is the BEM discretisation of the
+/// 1 % of the peak force (references.md §R5.1). The difference is the BEM discretisation of the
 /// patch (≈ 20 elements across), which changes the contact compliance by well under 1 %; the
 /// force history itself is set by the vehicle's inertia. The run is also checked to contain a
 /// real dynamic load (peak ≥ 1.15 W) so the comparison is not a static one.

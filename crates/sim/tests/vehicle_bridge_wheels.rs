@@ -160,7 +160,7 @@ fn woodbury_newton_and_picard_agree_for_four_wheels() {
 /// A 300 kg wheel carrying only 5 kN (no body) at 27.78 m/s over a 2 mm, 0.4 m dip off the
 /// bridge loses contact and lands again, with every contact model. During the flight
 /// (F = 0) its acceleration is the free fall (m_w g + P)/m_w (closed form, 1e-9 relative:
-/// backward Euler — the seed's scheme — satisfies the balance at t_{n+1} exactly when no
+/// backward Euler — the baseline scheme of references.md §D4.4 — satisfies the balance at t_{n+1} exactly when no
 /// contact force acts), and it lands again (an elastic contact may bounce several times). Backward Euler is also
 /// what makes the rigid landing an inelastic impact: the α-schemes impose δ = 0 at the
 /// position level and return a spurious rebound velocity at a rigid impact.

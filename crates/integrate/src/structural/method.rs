@@ -45,7 +45,7 @@ pub enum StructuralMethod {
         /// Spectral radius at infinite frequency, ρ∞ ∈ [0, 1].
         rho_inf: f64,
     },
-    /// Backward Euler for the second-order form (the founding talk's scheme):
+    /// Backward Euler for the second-order form (the baseline scheme of references.md §D4.4):
     /// `q_{n+1} = q_n + Δt v_{n+1}`, `v_{n+1} = v_n + Δt a_{n+1}`, balance at `t_{n+1}`.
     /// First order, L-stable, strongly dissipative.
     BackwardEuler,
@@ -144,7 +144,11 @@ impl StructuralMethod {
             _ => {
                 return Err(invalid(
                     "method",
-                    format!("unknown structural method `{name}`"),
+                    format!(
+                        "unknown structural method `{name}` (known: newmark, average_acceleration \
+                         or trapezoidal, linear_acceleration, central_difference, hht, \
+                         generalized_alpha, verlet, leapfrog, backward_euler)"
+                    ),
                 ));
             }
         };

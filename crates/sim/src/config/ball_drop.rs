@@ -5,9 +5,9 @@
 use halfspace::Body;
 use serde::Deserialize;
 
-use super::ConfigError;
 use super::checks::{self, ranges};
 use super::integrator::StructuralParameters;
+use super::{ConfigError, suggestion};
 use crate::ball_drop::{
     BallDrop, BallShape, ForceModel, Integrator, IntegratorSettings, METHOD_NAMES, sphere_mass,
 };
@@ -206,6 +206,15 @@ pub fn build(s: BallDropFile, integrator: Option<&str>) -> Result<BallDropConfig
         max_step: i.and_then(|i| i.max_step),
         parameters,
     };
+    if integrate::ode::Method::from_name(method).is_err()
+        && integrate::structural::StructuralMethod::by_name(method, &[]).is_err()
+    {
+        bail!(
+            "[integrator] method = \"{method}\": unknown method (known: {}){}",
+            METHOD_NAMES.join(", "),
+            suggestion(method, &METHOD_NAMES)
+        );
+    }
     let integrator = Integrator::from_name(method, &settings).map_err(|e| {
         invalid!(
             "[integrator] method = \"{method}\" (known: {}): {e}",

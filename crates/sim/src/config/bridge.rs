@@ -461,6 +461,11 @@ pub fn parse_bridge_file(text: &str) -> Result<Bridge, ConfigError> {
         .bridge
         .ok_or_else(|| invalid!("missing [bridge] section"))?
         .try_into()
-        .map_err(|e: toml::de::Error| ConfigError::Schema(format!("[bridge]: {}", e.message())))?;
+        .map_err(|e: toml::de::Error| {
+            ConfigError::Schema(super::with_key_suggestion(format!(
+                "[bridge]: {}",
+                e.message()
+            )))
+        })?;
     spec.build()
 }

@@ -279,8 +279,11 @@ fn tangential_case(
 
 /// Parse a case file's text (`base` resolves relative table paths).
 pub fn parse(text: &str, base: &Path) -> Result<PreparedCase, ConfigError> {
-    let case: ContactCase =
-        toml::from_str(text).map_err(|e| ConfigError::Schema(format!("invalid case file: {e}")))?;
+    let case: ContactCase = toml::from_str(text).map_err(|e| {
+        ConfigError::Schema(super::with_key_suggestion(format!(
+            "invalid case file: {e}"
+        )))
+    })?;
     prepare(case, base)
 }
 

@@ -128,7 +128,7 @@ pub fn load(text: &str, base: &Path, options: &LoadOptions) -> Result<ScenarioCo
         && kind != "ball_drop"
     {
         bail!(
-            "--integrator {name}: kind = \"{kind}\" does not take --integrator; set its integrator in the scenario file"
+            "--integrator {name}: kind = \"{kind}\" does not take --integrator (only ball_drop does); set `[integrator] method` in the scenario file (docs/integrators.md lists the methods)"
         );
     }
     let config = build(&kind, table, text, base, options)?;
@@ -181,15 +181,97 @@ fn parse_table(text: &str) -> Result<Document<'_>, ConfigError> {
         .map_err(|e| ConfigError::Schema(format!("invalid scenario file: {e}")))
 }
 
-/// The typed file struct of a parsed document (errors point at the line of the key).
+/// The typed file struct of a parsed document (errors point at the line of the key; an
+/// unknown key gets the nearest known one as a suggestion).
 fn deserialize<T: DeserializeOwned>(table: Document<'_>, text: &str) -> Result<T, ConfigError> {
     T::deserialize(toml::de::Deserializer::from(table)).map_err(|mut e| {
         e.set_input(Some(text));
-        ConfigError::Schema(format!("invalid scenario file: {e}"))
+        ConfigError::Schema(with_key_suggestion(format!("invalid scenario file: {e}")))
     })
+}
+
+/// Edit distance (insertions, deletions, substitutions and swaps of neighbours) between two
+/// names, case-insensitive.
+fn edit_distance(a: &str, b: &str) -> usize {
+    let a: Vec<char> = a.to_lowercase().chars().collect();
+    let b: Vec<char> = b.to_lowercase().chars().collect();
+    let mut d = vec![vec![0usize; b.len() + 1]; a.len() + 1];
+    for (i, row) in d.iter_mut().enumerate() {
+        row[0] = i;
+    }
+    for j in 0..=b.len() {
+        d[0][j] = j;
+    }
+    for i in 1..=a.len() {
+        for j in 1..=b.len() {
+            let cost = usize::from(a[i - 1] != b[j - 1]);
+            let mut v = (d[i - 1][j] + 1)
+                .min(d[i][j - 1] + 1)
+                .min(d[i - 1][j - 1] + cost);
+            if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
+                v = v.min(d[i - 2][j - 2] + 1);
+            }
+            d[i][j] = v;
+        }
+    }
+    d[a.len()][b.len()]
+}
+
+/// ` (did you mean `NAME`?)` for the known name nearest to `given`, when it is a near miss (at
+/// most one edit per three characters, at least one allowed); empty otherwise.
+pub(crate) fn suggestion(given: &str, known: &[&str]) -> String {
+    let allowed = (given.chars().count() / 3).max(1);
+    known
+        .iter()
+        .map(|k| (edit_distance(given, k), *k))
+        .filter(|(d, _)| *d <= allowed)
+        .min()
+        .map_or_else(String::new, |(_, k)| format!(" (did you mean `{k}`?)"))
+}
+
+/// Appends a suggestion to serde's "unknown field `x`, expected one of `a`, `b`" message.
+pub(crate) fn with_key_suggestion(message: String) -> String {
+    let Some(start) = message.find("unknown field `") else {
+        return message;
+    };
+    let rest = &message[start + "unknown field `".len()..];
+    let Some(end) = rest.find('`') else {
+        return message;
+    };
+    let given = &rest[..end];
+    let known: Vec<&str> = rest[end + 1..].split('`').skip(1).step_by(2).collect();
+    let hint = suggestion(given, &known);
+    if hint.is_empty() {
+        message
+    } else {
+        format!("{}{hint}", message.trim_end())
+    }
 }
 
 /// Parse text straight into a typed file struct (one parse).
 fn from_str<T: DeserializeOwned>(text: &str) -> Result<T, ConfigError> {
     deserialize(parse_table(text)?, text)
+}
+
+#[cfg(test)]
+mod suggestion_tests {
+    use super::{edit_distance, suggestion, with_key_suggestion};
+
+    #[test]
+    fn near_misses_are_suggested_and_far_names_are_not() {
+        assert_eq!(edit_distance("lenght", "length"), 1); // a swap of neighbours
+        assert_eq!(edit_distance("speed", "sped"), 1);
+        assert_eq!(edit_distance("Modes", "modes"), 0);
+        assert_eq!(edit_distance("abc", "xyz"), 3);
+        let known = ["length", "modes", "supports"];
+        assert_eq!(suggestion("lenght", &known), " (did you mean `length`?)");
+        assert_eq!(suggestion("mode", &known), " (did you mean `modes`?)");
+        assert_eq!(suggestion("damping", &known), "");
+        let m = with_key_suggestion(
+            "invalid: unknown field `lenght`, expected one of `length`, `EI`, `E`\n".into(),
+        );
+        assert!(m.ends_with("`E` (did you mean `length`?)"), "{m}");
+        let m = with_key_suggestion("unknown field `x`, expected `kind`".into());
+        assert_eq!(m, "unknown field `x`, expected `kind`");
+    }
 }

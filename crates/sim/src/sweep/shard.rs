@@ -18,6 +18,9 @@ use crate::config::{ConfigError, ScenarioConfig};
 pub struct ShardFile {
     /// The scenario's text.
     pub scenario: String,
+    /// The scenario file's name (for the `"input"` echo of the merged summary).
+    #[serde(default)]
+    pub scenario_file: Option<String>,
     /// The directory relative paths in the scenario (train files) are resolved against.
     pub base: PathBuf,
     /// `[K, N]`.
@@ -56,6 +59,7 @@ impl ShardFile {
     ) -> Self {
         ShardFile {
             scenario: scenario.to_string(),
+            scenario_file: None,
             base: base.canonicalize().unwrap_or_else(|_| base.to_path_buf()),
             shard: [shard.index, shard.count],
             passages: passages.iter().map(encode).collect(),

@@ -3,7 +3,7 @@
 //! A law returns, for a prescribed approach δ \[m\] (positive when wheel and rail overlap), the
 //! normal force F(δ) \[N\], its tangent k_c = dF/dδ \[N/m\] and the force carried by each column
 //! of its grid (positions ξ_i relative to the wheel, along the track), from which the
-//! simulation forms the modal loads I_j = Σ_i F_i w_j(x_wheel + ξ_i) (the seed's ∫ p w_j dx,
+//! simulation forms the modal loads I_j = Σ_i F_i w_j(x_wheel + ξ_i) (∫ p w_j dx of references.md §D4.4,
 //! Σ_e p_e ΔA w_j(x_e)).
 //!
 //! * `hertz`: [`HertzPoint`], the closed-form elliptic Hertz spring F = C_H δ^{3/2} for δ > 0,

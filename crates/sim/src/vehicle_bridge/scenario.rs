@@ -77,7 +77,7 @@ impl Integrator {
 pub enum CouplingSolver {
     /// Fixed-point iteration on the contact forces.
     Picard,
-    /// The seed's quasi-Newton method (Sherman–Morrison / Woodbury).
+    /// The quasi-Newton method of references.md §D4.4 (Sherman–Morrison / Woodbury).
     QuasiNewton,
     /// The same linearisation solved with a dense matrix (reference).
     Newton,

@@ -206,13 +206,17 @@ impl Traction {
             }
         }
         let radius = geometry.wheel_radius;
-        // Before the first step: free rolling, no force yet.
+        // Before the first step no force yet: a prescribed creepage ξ fixes the wheel's
+        // rotation by its definition ξ = (V − ωR)/V, i.e. ω = V(1 − ξ)/R; a torque-driven
+        // wheel starts from free rolling, ω = V/R.
+        let xi0 = match spec.drive {
+            TractionDrive::Creepage(xi) => xi,
+            TractionDrive::Torque { .. } => 0.0,
+        };
+        let omega0 = speed * (1.0 - xi0) / radius;
         let start = TractionSample {
-            creepage: match spec.drive {
-                TractionDrive::Creepage(xi) => xi,
-                TractionDrive::Torque { .. } => 0.0,
-            },
-            angular_velocity: speed / radius,
+            creepage: xi0,
+            angular_velocity: omega0,
             ..TractionSample::default()
         };
         Ok(Self {
@@ -223,7 +227,7 @@ impl Traction {
             solvers,
             px,
             py,
-            omega: vec![speed / radius; n],
+            omega: vec![omega0; n],
             samples: vec![start; n],
             sum: 0.0,
             summary: TractionSummary::default(),
@@ -269,7 +273,11 @@ impl Traction {
         for k in 0..wheels.len() {
             let fn_ = wheels[k].contact.force;
             let xi = match self.spec.drive {
-                TractionDrive::Creepage(xi) => xi,
+                // The rotation consistent with the prescribed creepage (the speed may vary).
+                TractionDrive::Creepage(xi) => {
+                    self.omega[k] = speed * (1.0 - xi) / r;
+                    xi
+                }
                 TractionDrive::Torque { .. } => (speed - self.omega[k] * r) / speed,
             };
             let (fx, adhesion, saturated) = if fn_ <= 0.0 {
