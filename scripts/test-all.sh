@@ -7,7 +7,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 # --- Rust ---
-cargo test --workspace
+cargo test --workspace --release
 
 # --- Python ---
 python_start=$SECONDS
@@ -21,9 +21,8 @@ export PATH="$venv/bin:$PATH"   # maturin's build backend runs the `maturin` of 
 "$py" -m pip install --quiet --disable-pip-version-check \
     "maturin>=1.9.4,<2" "numpy>=1.21" pytest "dask[distributed]"
 # The extension is built by maturin in release mode (as a user's `pip install ./python`) into the
-# workspace's target directory. It shares no artifacts with `cargo test` (another profile and
-# feature set), so this is a build of its own: about 3 minutes on 2 cores.
+# workspace's target directory, next to the release build of the tests.
 "$py" -m pip install --quiet --disable-pip-version-check --no-build-isolation --force-reinstall --no-deps ./python
 echo "scripts/test-all.sh: Rust tests done at ${python_start} s; Python venv and build took $((SECONDS - python_start)) s"
-# The CLI that the Python results are compared with: the binary `cargo test` built.
-DYNCONTACT_BIN="$PWD/target/debug/dyncontact" "$py" -m pytest python/tests -q -rs
+# The CLI that the Python results are compared with: the binary `cargo test --release` built.
+DYNCONTACT_BIN="$PWD/target/release/dyncontact" "$py" -m pytest python/tests -q -rs
