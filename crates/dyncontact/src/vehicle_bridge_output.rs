@@ -51,71 +51,21 @@ impl Row {
 
     /// The CSV columns of this row (see [`header`]).
     fn values(&self, out: &mut Vec<f64>) {
-        out.clear();
-        out.extend([
+        sim::vehicle_bridge_series::row(
             self.t,
-            self.midspan.0,
-            self.midspan.1,
-            self.midspan.2,
-            self.iterations as f64,
-        ]);
-        for (k, w) in self.wheels.iter().enumerate() {
-            out.extend([
-                w.position,
-                w.wheel_displacement,
-                w.body_displacement,
-                w.body_acceleration,
-                w.contact.force,
-                w.approach,
-                w.contact.patch_length,
-                w.contact.patch_width,
-                w.contact.max_pressure,
-            ]);
-            if let Some(t) = self.traction.get(k) {
-                out.extend([t.longitudinal_force, t.creepage, t.adhesion_fraction]);
-            }
-        }
+            self.midspan,
+            self.iterations,
+            &self.wheels,
+            &self.traction,
+            out,
+        );
     }
 }
 
 /// The CSV header for `nw` wheels (with the three traction columns per wheel when
 /// `with_traction`).
 fn header(nw: usize, with_traction: bool) -> Vec<String> {
-    let mut header: Vec<String> = [
-        "t",
-        "midspan_deflection",
-        "midspan_velocity",
-        "midspan_acceleration",
-        "iterations",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect();
-    let per_wheel = [
-        "position",
-        "wheel_z",
-        "body_z",
-        "body_acceleration",
-        "contact_force",
-        "approach",
-        "patch_length",
-        "patch_width",
-        "max_pressure",
-        "longitudinal_force",
-        "creepage",
-        "adhesion_fraction",
-    ];
-    let per_wheel = &per_wheel[..if with_traction { 12 } else { 9 }];
-    for k in 0..nw {
-        for &name in per_wheel {
-            header.push(if nw == 1 {
-                name.to_string()
-            } else {
-                format!("{name}_{k}")
-            });
-        }
-    }
-    header
+    sim::vehicle_bridge_series::columns(nw, with_traction)
 }
 
 /// Records the steps it is given: streams each to the CSV and keeps a thinned copy for the
