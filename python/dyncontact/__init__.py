@@ -30,6 +30,7 @@ __all__ = [
     "contact",
     "creep_curve",
     "modes",
+    "run",
     "solve_normal",
     "sweep",
 ]
@@ -290,3 +291,37 @@ def sweep(
     out = json.loads(merged.pop("summary_json"))
     out["passages"] = _maybe_frame(merged)
     return out
+
+
+def run(scenario: Case) -> Dict[str, Any]:
+    """Run a scenario file (dispatch on its ``kind``), as ``dyncontact run``.
+
+    ``kind = "vehicle_bridge"``: wheels or a train over a bridge, coupled at every step (GIL
+    released; Ctrl-C raises ``KeyboardInterrupt``). Returns ``{"summary": dict, "timeseries":
+    table}``: the summary holds the run's key numbers under the names of the CLI's
+    ``summary.json`` (``max_midspan_deflection`` [m], ``max_midspan_acceleration`` [m/s²],
+    ``dynamic_amplification``, ``contact`` (``max_force``, ``min_force`` [N], ``max_pressure``
+    [Pa], ``loss_of_contact_events``), ``vehicle``, ``solver``, ``warnings``); the time series
+    has the columns of ``timeseries.csv`` (``t_s`` [s], ``deflection_midspan_m`` [m], ...,
+    ``contact_force`` [N] per wheel), one row per recorded step (``[output] every``), as a
+    pandas DataFrame when pandas is installed, else a dict of float64 arrays.
+
+    ``kind = "contact"`` returns ``contact(scenario)``; ``kind = "sweep"`` returns
+    ``sweep(scenario)``. ``ball_drop`` and ``moving_load`` are not available from Python yet
+    (``ValueError``; use ``dyncontact run``).
+    """
+    text, base = _case_text(scenario, "run")
+    d = _native.run_text(text, base)
+    kind = d["kind"]
+    if kind == "contact":
+        return contact(scenario)
+    if kind == "sweep":
+        return sweep(scenario)
+    if kind != "vehicle_bridge":
+        raise ValueError(
+            f'`kind` = "{kind}": not available from Python yet (vehicle_bridge, contact and '
+            "sweep are); run it with `dyncontact run`"
+        )
+    series = d["series"]
+    columns = {name: series[:, k] for k, name in enumerate(d["columns"])}
+    return {"summary": d["summary"], "timeseries": _maybe_frame(columns)}

@@ -68,3 +68,12 @@ def sweep_merge(shards: List[str]) -> Dict[str, Any]:
     CLI's ``summary.json``) and the columns of ``sweep.csv`` as float64 arrays: ``train``,
     ``speed_m_s``, ``point_m``, ``max_deflection_m``, ``max_acceleration_m_s2``,
     ``max_static_deflection_m``, ``dynamic_factor``."""
+
+def run_text(text: str, base: str) -> Dict[str, Any]:
+    """A scenario file's text: ``kind = "vehicle_bridge"`` is run (GIL released, Ctrl-C
+    polled) and returns ``kind``, ``summary`` (dict), ``columns`` (the names of
+    ``timeseries.csv``) and ``series`` (float64, rows × columns); other kinds return only
+    ``kind``."""
+
+def _panic_for_tests(interruptible_run: bool) -> None:
+    """Panics inside the boundary (tests that it raises InternalError). Not public API."""

@@ -14,7 +14,8 @@ r = dyncontact.contact("examples/hertz_sphere.toml")
 print(f"sphere: F = {r.normal_force:.1f} N, p_max = {r.max_pressure / 1e9:.4f} GPa "
       f"(Hertz {r.hertz['max_pressure'] / 1e9:.4f} GPa), {r.iterations} iterations")
 
-# 2. A user-made gap: the same sphere with a random roughness of 0.1 µm rms.
+# 2. A user-made gap: the same sphere with 0.1 µm rms of uncorrelated per-element noise (an
+#    illustration of a rough gap from numpy, not a model of a real surface).
 n = 128
 a = r.hertz["a"]
 dx = 2.5 * a / n

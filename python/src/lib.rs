@@ -41,6 +41,7 @@ fn native_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(native_contact::contact_text, m)?)?;
     m.add_function(wrap_pyfunction!(native_contact::creep_curve_text, m)?)?;
     m.add_function(wrap_pyfunction!(native_run::modes_text, m)?)?;
+    m.add_function(wrap_pyfunction!(native_run::run_text, m)?)?;
     m.add_function(wrap_pyfunction!(native_sweep::sweep_shard, m)?)?;
     m.add_function(wrap_pyfunction!(native_sweep::sweep_merge, m)?)?;
     m.add_function(wrap_pyfunction!(guard::panic_for_tests, m)?)?;

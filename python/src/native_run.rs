@@ -1,5 +1,5 @@
 //! Bridges: `modes_text` (the modal table and mode shapes, `sim::modes`, as `dyncontact
-//! modes`).
+//! modes`) and `run_text` (a vehicle–bridge run with its time series, as `dyncontact run`).
 
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
@@ -7,7 +7,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
 
 use crate::SolverError;
-use crate::guard::released;
+use crate::guard::{interruptible, released};
 
 /// Samples of the mode shapes along the span (as `dyncontact modes --out`).
 const SHAPE_SAMPLES: usize = 401;
@@ -37,6 +37,204 @@ pub fn modes_text<'py>(py: Python<'py>, text: &str) -> PyResult<Bound<'py, PyDic
     d.set_item(
         "shapes",
         PyArray1::from_vec(py, shapes).reshape([rows.len(), n])?,
+    )?;
+    Ok(d)
+}
+
+/// Values of the time series a run may hold in memory (8 bytes each: 400 MB).
+const MAX_SERIES_VALUES: usize = 50_000_000;
+
+/// `run_text(text, base) -> dict`: a scenario file's text. `kind = "vehicle_bridge"` runs (as
+/// `dyncontact run`, the library's run driver `sim::vehicle_bridge::run`) with the GIL
+/// released and Ctrl-C polled every 50 ms, and returns `summary` (a dict of the run's key
+/// numbers, named as in the CLI's `summary.json`), `columns` (the names of `timeseries.csv`)
+/// and `series` (float64, one row per recorded step). Other kinds return only `kind` (the
+/// wrapper dispatches `contact` and `sweep`; `ball_drop` and `moving_load` are refused).
+/// What a run from Python produced (everything `Send`: the simulation itself is built and run
+/// on the worker thread).
+enum RunOutcome {
+    /// Not a vehicle–bridge scenario: its kind.
+    Kind(&'static str),
+    /// Bad input (the message names the key).
+    Invalid(String),
+    /// A step failed.
+    Failed(String),
+    /// Stopped by Ctrl-C at this time \[s\].
+    Interrupted(f64),
+    /// A completed run.
+    Done(Box<RunData>),
+}
+
+struct RunData {
+    summary: sim::vehicle_bridge::RunSummary,
+    columns: Vec<String>,
+    series: Vec<f64>,
+    static_loads: Vec<f64>,
+    warnings: Vec<String>,
+}
+
+/// Builds and runs a vehicle–bridge scenario (on the worker thread), recording the time series.
+fn run_vehicle_bridge(text: &str, base: &str, stop: &std::sync::atomic::AtomicBool) -> RunOutcome {
+    use std::ops::ControlFlow;
+    use std::sync::atomic::Ordering;
+
+    use sim::config::ScenarioConfig;
+    use sim::vehicle_bridge::{Simulation, run};
+
+    let config = match sim::config::load(text, std::path::Path::new(base), &Default::default()) {
+        Ok(c) => c,
+        Err(e) => return RunOutcome::Invalid(e.to_string()),
+    };
+    let ScenarioConfig::VehicleBridge(config) = config else {
+        return RunOutcome::Kind(config.kind());
+    };
+    let sim::config::vehicle_bridge::VehicleBridgeConfig {
+        scenario,
+        vehicles,
+        traction,
+        every,
+        warnings,
+        ..
+    } = *config;
+    let mut sim = match Simulation::with_vehicles(scenario, vehicles) {
+        Ok(s) => s,
+        Err(e) => return RunOutcome::Invalid(e.to_string()),
+    };
+    if let Some(spec) = traction
+        && let Err(e) = sim.set_traction(spec)
+    {
+        return RunOutcome::Invalid(e.to_string());
+    }
+    let every = every.max(1);
+    let steps = sim.planned_steps();
+    let columns = sim::vehicle_bridge_series::columns(sim.wheels().len(), sim.traction().is_some());
+    let width = columns.len();
+    let rows = steps / every + 2;
+    if rows.saturating_mul(width) > MAX_SERIES_VALUES {
+        return RunOutcome::Invalid(format!(
+            "[output] `every` = {every}: {steps} steps would record {rows} rows of {width} values, more than the {MAX_SERIES_VALUES} a run from Python holds in memory; raise `every`"
+        ));
+    }
+    let mut series = Vec::with_capacity(rows * width);
+    let mut line = Vec::with_capacity(width);
+    let mut record = |sim: &Simulation, iterations: usize, series: &mut Vec<f64>| {
+        let traction = sim.traction().map(|t| t.samples()).unwrap_or(&[]);
+        sim::vehicle_bridge_series::row(
+            sim.t(),
+            sim.output_point_response(),
+            iterations,
+            sim.wheels(),
+            traction,
+            &mut line,
+        );
+        series.extend_from_slice(&line);
+    };
+    record(&sim, 0, &mut series);
+    let mut observer = |s: &Simulation, info: run::StepInfo| {
+        if info.step.is_multiple_of(every) || info.step == info.steps {
+            record(s, info.iterations, &mut series);
+        }
+        if stop.load(Ordering::Relaxed) {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
+    };
+    match run::run(&mut sim, &mut observer) {
+        Ok(summary) if summary.completed => RunOutcome::Done(Box::new(RunData {
+            summary,
+            columns,
+            series,
+            static_loads: sim.static_loads().to_vec(),
+            warnings,
+        })),
+        Ok(summary) => RunOutcome::Interrupted(summary.time_reached),
+        Err(f) => RunOutcome::Failed(format!(
+            "step {} of {steps}: {}",
+            f.partial.steps_taken + 1,
+            f.error
+        )),
+    }
+}
+
+/// `run_text(text, base) -> dict`: a scenario file's text. `kind = "vehicle_bridge"` runs (as
+/// `dyncontact run`, the library's run driver `sim::vehicle_bridge::run`) with the GIL
+/// released and Ctrl-C polled every 50 ms, and returns `summary` (a dict of the run's key
+/// numbers, named as in the CLI's `summary.json`), `columns` (the names of `timeseries.csv`)
+/// and `series` (float64, one row per recorded step). Other kinds return only `kind` (the
+/// wrapper dispatches `contact` and `sweep`; `ball_drop` and `moving_load` are refused).
+#[pyfunction]
+pub fn run_text<'py>(py: Python<'py>, text: &str, base: &str) -> PyResult<Bound<'py, PyDict>> {
+    use pyo3::exceptions::PyKeyboardInterrupt;
+
+    let d = PyDict::new(py);
+    let data = match interruptible(py, |stop| run_vehicle_bridge(text, base, stop))? {
+        RunOutcome::Kind(kind) => {
+            d.set_item("kind", kind)?;
+            return Ok(d);
+        }
+        RunOutcome::Invalid(m) => return Err(PyValueError::new_err(m)),
+        RunOutcome::Failed(m) => return Err(SolverError::new_err(m)),
+        RunOutcome::Interrupted(t) => {
+            return Err(PyKeyboardInterrupt::new_err(format!(
+                "the run was interrupted at t = {t} s"
+            )));
+        }
+        RunOutcome::Done(data) => data,
+    };
+    let RunData {
+        summary,
+        columns,
+        series,
+        static_loads,
+        warnings,
+    } = *data;
+    d.set_item("kind", "vehicle_bridge")?;
+    let width = columns.len();
+    let s = PyDict::new(py);
+    s.set_item("completed", summary.completed)?;
+    s.set_item("time_reached", summary.time_reached)?;
+    s.set_item("max_midspan_deflection", summary.deflection.max_abs())?;
+    s.set_item("max_midspan_acceleration", summary.acceleration.max_abs())?;
+    s.set_item(
+        "max_quasi_static_deflection",
+        summary.max_quasi_static_deflection,
+    )?;
+    s.set_item("dynamic_amplification", summary.dynamic_amplification)?;
+    let contact = PyDict::new(py);
+    contact.set_item("max_force", summary.max_force())?;
+    contact.set_item("min_force", summary.min_force())?;
+    contact.set_item("loss_of_contact_events", summary.loss_of_contact_events)?;
+    contact.set_item("max_pressure", summary.max_pressure())?;
+    s.set_item("contact", contact)?;
+    let vehicle = PyDict::new(py);
+    vehicle.set_item("max_body_acceleration", summary.max_body_acceleration())?;
+    vehicle.set_item("max_wheel_acceleration", summary.max_wheel_acceleration())?;
+    vehicle.set_item("static_wheel_loads", static_loads)?;
+    s.set_item("vehicle", vehicle)?;
+    let stats = summary.solver;
+    let solver = PyDict::new(py);
+    solver.set_item("steps", stats.steps)?;
+    solver.set_item(
+        "mean_iterations_per_step",
+        stats.iterations as f64 / stats.steps.max(1) as f64,
+    )?;
+    solver.set_item("max_iterations_per_step", stats.max_iterations)?;
+    solver.set_item(
+        "mean_contact_iterations_per_step",
+        stats.contact_iterations as f64 / stats.steps.max(1) as f64,
+    )?;
+    solver.set_item("failed_steps", stats.failed_steps)?;
+    s.set_item("solver", solver)?;
+    let mut all_warnings = warnings;
+    all_warnings.extend(summary.accuracy.warnings.iter().cloned());
+    s.set_item("warnings", all_warnings)?;
+    d.set_item("summary", s)?;
+    d.set_item("columns", columns)?;
+    let n_rows = series.len() / width;
+    d.set_item(
+        "series",
+        PyArray1::from_vec(py, series).reshape([n_rows, width])?,
     )?;
     Ok(d)
 }

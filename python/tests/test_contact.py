@@ -132,6 +132,8 @@ def test_readme_one_liner_prints_the_cli_number():
         cwd=ROOT, capture_output=True, text=True, check=True,
     )
     assert float(out.stdout) == cli_json("contact", "examples/hertz_sphere.toml")["max_pressure"]
+    # README.md quotes the printed number.
+    assert f"prints {out.stdout.strip()}," in (ROOT / "README.md").read_text(encoding="utf-8")
 
 
 @pytest.mark.parametrize(

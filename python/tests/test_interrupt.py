@@ -1,14 +1,17 @@
-"""Ctrl-C (SIGINT) interrupts a long sweep: the extension polls Python's signal handlers every
-50 ms while the Rust code runs with the GIL released, and the sweep stops between passages."""
+"""Ctrl-C (SIGINT) interrupts a long sweep and a long vehicle–bridge run: the extension polls
+Python's signal handlers every 50 ms while the Rust code runs with the GIL released, and the
+library stops between passages (sweep) or after the current step (run)."""
 
 import signal
 import subprocess
 import sys
 import time
 
+import pytest
+
 from conftest import ROOT
 
-SCRIPT = r"""
+SWEEP = r"""
 import sys, time, tomllib
 import dyncontact
 with open("examples/sweep_hslm.toml", "rb") as f:
@@ -25,9 +28,28 @@ print("finished", flush=True)
 """
 
 
-def test_ctrl_c_stops_a_sweep():
+RUN = r"""
+import sys, time, tomllib
+import dyncontact
+with open("examples/vehicle_bridge_default.toml", "rb") as f:
+    case = tomllib.load(f)
+case["integrator"]["dt"] = 2.5e-6   # 100 x the example's steps: minutes of work
+case["output"] = {"every": 1000}
+print("start", flush=True)
+t0 = time.perf_counter()
+try:
+    dyncontact.run(case)
+except KeyboardInterrupt as e:
+    print(f"interrupted after {time.perf_counter() - t0:.2f} s: {e}", flush=True)
+    sys.exit(3)
+print("finished", flush=True)
+"""
+
+
+@pytest.mark.parametrize("script", [SWEEP, RUN], ids=["sweep", "vehicle_bridge_run"])
+def test_ctrl_c_stops_a_long_run(script):
     p = subprocess.Popen(
-        [sys.executable, "-c", SCRIPT], cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+        [sys.executable, "-c", script], cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
     )
     assert p.stdout.readline().strip() == "start"
     time.sleep(1.5)
@@ -37,5 +59,5 @@ def test_ctrl_c_stops_a_sweep():
     stopped = time.perf_counter() - sent
     assert p.returncode == 3, (out, err)
     assert "interrupted" in out and "KeyboardInterrupt" not in err
-    # Between passages: each takes milliseconds; 30 s leaves room for a loaded machine.
+    # A passage or a step takes milliseconds; 30 s leaves room for a loaded machine.
     assert stopped < 30, stopped

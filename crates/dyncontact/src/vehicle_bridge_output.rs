@@ -52,72 +52,21 @@ impl Row {
 
     /// The CSV columns of this row (see [`header`]).
     fn values(&self, out: &mut Vec<f64>) {
-        out.clear();
-        out.extend([
+        sim::vehicle_bridge_series::row(
             self.t,
-            self.midspan.0,
-            self.midspan.1,
-            self.midspan.2,
-            self.iterations as f64,
-        ]);
-        for (k, w) in self.wheels.iter().enumerate() {
-            out.extend([
-                w.position,
-                w.wheel_displacement,
-                w.body_displacement,
-                w.body_acceleration,
-                w.contact.force,
-                w.approach,
-                w.contact.patch_length,
-                w.contact.patch_width,
-                w.contact.max_pressure,
-            ]);
-            if let Some(t) = self.traction.get(k) {
-                out.extend([t.longitudinal_force, t.creepage, t.adhesion_fraction]);
-            }
-        }
+            self.midspan,
+            self.iterations,
+            &self.wheels,
+            &self.traction,
+            out,
+        );
     }
 }
 
 /// The CSV header for `nw` wheels (with the three traction columns per wheel when
 /// `with_traction`).
 fn header(nw: usize, with_traction: bool) -> Vec<String> {
-    // Column names: quantity, where, unit (docs/outputs.md); "midspan" is the output point.
-    let mut header: Vec<String> = [
-        "t_s",
-        "deflection_midspan_m",
-        "velocity_midspan_m_s",
-        "acceleration_midspan_m_s2",
-        "iterations",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect();
-    let per_wheel = [
-        ("position", "_m"),
-        ("wheel_z", "_m"),
-        ("body_z", "_m"),
-        ("body_acceleration", "_m_s2"),
-        ("contact_force", "_n"),
-        ("approach", "_m"),
-        ("patch_length", "_m"),
-        ("patch_width", "_m"),
-        ("max_pressure", "_pa"),
-        ("longitudinal_force", "_n"),
-        ("creepage", ""),
-        ("adhesion_fraction", ""),
-    ];
-    let per_wheel = &per_wheel[..if with_traction { 12 } else { 9 }];
-    for k in 0..nw {
-        for &(name, unit) in per_wheel {
-            header.push(if nw == 1 {
-                format!("{name}{unit}")
-            } else {
-                format!("{name}_{k}{unit}")
-            });
-        }
-    }
-    header
+    sim::vehicle_bridge_series::columns(nw, with_traction)
 }
 
 /// Records the steps it is given: streams each to the CSV and keeps a thinned copy for the

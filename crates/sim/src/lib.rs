@@ -20,3 +20,4 @@ pub mod modes;
 pub mod sweep;
 pub mod train;
 pub mod vehicle_bridge;
+pub mod vehicle_bridge_series;
