@@ -150,6 +150,9 @@ pub struct Simulation {
     radau: Option<radau::RadauPath>,
     /// Rigid contacts: constraint gradients, projection state (module `rigid`).
     rigid: rigid::RigidWork,
+    /// A_j of the shapes A_j sin((j+1)πx/L) when the bridge is a simply supported uniform span
+    /// (`beam::sine_amplitudes`): the wheel geometry then costs one `sin_cos` per wheel.
+    sine: Option<Vec<f64>>,
 }
 
 #[derive(Debug, Default)]

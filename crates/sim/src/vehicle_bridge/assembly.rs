@@ -361,7 +361,9 @@ impl Simulation {
             traction: None,
             radau: None,
             rigid,
+            sine: None,
         };
+        sim.sine = beam::sine_amplitudes(&*sim.scenario.bridge)?;
         sim.initial_samples()?;
         sim.rigid_start()?;
         if let Integrator::Radau5(spec) = sim.scenario.integrator {

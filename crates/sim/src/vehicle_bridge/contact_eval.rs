@@ -14,22 +14,30 @@ impl Simulation {
         let length = basis.length();
         let m = basis.n_modes();
         let w = &mut self.work;
+        // Mode shapes at x (the sine recurrence on a simply supported uniform span).
+        let sine = self.sine.as_deref();
+        let shapes_at = |x: f64, out: &mut [f64]| -> Result<(), VehicleBridgeError> {
+            if !(0.0..=length).contains(&x) {
+                out.fill(0.0);
+            } else if let Some(a) = sine {
+                beam::sine_shapes(a, length, x, out);
+            } else {
+                basis.eval_all(x, Derivative::Shape, out)?;
+            }
+            Ok(())
+        };
         for (k, spec) in self.scenario.wheels.iter().enumerate() {
             let x = spec.position + self.scenario.speed * t;
             self.samples[k].position = x;
-            if (0.0..=length).contains(&x) {
-                basis.eval_all(x, Derivative::Shape, &mut w.shape_at_wheel[k])?;
-            } else {
-                w.shape_at_wheel[k].fill(0.0);
-            }
+            shapes_at(x, &mut w.shape_at_wheel[k])?;
             w.r_at_wheel[k] = self.scenario.irregularity.height(x);
             for (i, &xi) in columns(&self.contacts[k]).iter().enumerate() {
                 let xc = x + xi;
                 let out = &mut w.shape_at_columns[k][i * m..(i + 1) * m];
-                if (0.0..=length).contains(&xc) {
-                    basis.eval_all(xc, Derivative::Shape, out)?;
+                if xi == 0.0 {
+                    out.copy_from_slice(&w.shape_at_wheel[k]);
                 } else {
-                    out.fill(0.0);
+                    shapes_at(xc, out)?;
                 }
                 w.r_at_columns[k][i] = self.scenario.irregularity.height(xc);
             }
