@@ -13,7 +13,7 @@ use pyo3::exceptions::{PyKeyboardInterrupt, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyString};
 use sim::config::ScenarioConfig;
-use sim::sweep::shard::{self, MergeError, ShardFile};
+use sim::sweep::shard::{self, ShardFile};
 use sim::sweep::{Shard, SweepError};
 
 use crate::SolverError;
@@ -79,10 +79,9 @@ pub fn sweep_merge<'py>(py: Python<'py>, shards: Vec<String>) -> PyResult<Bound<
         })
         .collect::<PyResult<Vec<_>>>()?;
     let (report, table) = released(py, move || {
-        let merged = shard::merge(&files).map_err(|e| match e {
-            MergeError::NotSweep(_) | MergeError::Config(_) => PyValueError::new_err(e.to_string()),
-            other => PyValueError::new_err(other.to_string()),
-        })?;
+        // Every merge error is bad input: shards of other scenarios, an incomplete set, or a
+        // scenario that no longer parses.
+        let merged = shard::merge(&files).map_err(|e| PyValueError::new_err(e.to_string()))?;
         let report = shard::report(&merged.config, &merged.passages, merged.wall_time_s)
             .map_err(|e| SolverError::new_err(format!("sweep: {e}")))?;
         let table = sim::sweep::summary::passage_table(&merged.config.spec, &merged.passages);

@@ -106,3 +106,21 @@ def test_dask_sweep_equals_the_local_sweep():
         assert a.keys() == b.keys()
         for k in a:
             np.testing.assert_array_equal(a[k], b[k])
+
+
+def test_merge_refuses_an_incomplete_or_mixed_set():
+    from dyncontact import _native
+
+    case = small_sweep()
+    text = _native.toml_text(case)
+    one_of_two = _native.sweep_shard(text, ".", 1, 2)
+    with pytest.raises(ValueError, match="shard 2/2 is missing"):
+        _native.sweep_merge([one_of_two])
+    with pytest.raises(ValueError, match="does not fit"):
+        _native.sweep_merge([one_of_two, one_of_two])
+    case["speeds"]["step"] *= 2
+    other = _native.sweep_shard(_native.toml_text(case), ".", 2, 2)
+    with pytest.raises(ValueError, match="another scenario"):
+        _native.sweep_merge([one_of_two, other])
+    with pytest.raises(ValueError, match="shard 3/2"):
+        _native.sweep_shard(text, ".", 3, 2)
