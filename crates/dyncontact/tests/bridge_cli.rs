@@ -146,7 +146,7 @@ fn bridge_errors_name_the_key() {
         (
             "EI = 8.323e9",
             "EI = -1.0",
-            &["[bridge]", "bending_stiffness"],
+            &["`bridge.EI` = -1", "must lie in"],
         ),
         ("modes = 8", "modes = 0", &["[bridge]", "modes"]),
         ("modes = 8", "modes = 8\nfoo = 1", &["unknown field", "foo"]),

@@ -102,9 +102,8 @@ pub struct Bridge {
 }
 
 /// EI from `EI` or `E` × `I`; `at` is the section as printed, `path` the key prefix
-/// (`bridge` or `bridge.sections[k]`). Negative or zero values are left to
-/// [`UniformBeam::new`]/[`FeBeam::new`] (their messages name `bending_stiffness`); the
-/// range check refuses the absurd ones.
+/// (`bridge` or `bridge.sections[k]`). Every value is range-checked under the key as written
+/// (`bridge.EI`, `bridge.E`, `bridge.I`), zero and negative ones included.
 fn bending_stiffness(
     ei: Option<f64>,
     e: Option<f64>,
@@ -113,11 +112,7 @@ fn bending_stiffness(
     path: &str,
 ) -> Result<f64, ConfigError> {
     let positive_out_of_range = |key: &str, v: f64, range: checks::Range| {
-        if v > 0.0 || !v.is_finite() {
-            range.check(&format!("{path}.{key}"), v).map(|_| ())
-        } else {
-            Ok(())
-        }
+        range.check(&format!("{path}.{key}"), v).map(|_| ())
     };
     match (ei, e, i) {
         (Some(ei), None, None) => {
