@@ -306,9 +306,16 @@ def run(scenario: Case) -> Dict[str, Any]:
     ``contact_force`` [N] per wheel), one row per recorded step (``[output] every``), as a
     pandas DataFrame when pandas is installed, else a dict of float64 arrays.
 
+    ``kind = "ball_drop"`` and ``kind = "moving_load"`` run the same way (GIL released, Ctrl-C
+    stops them) and return ``{"summary": dict, "timeseries": table}`` with the CLI's
+    ``summary.json`` (every key, as written by ``dyncontact run``, ``wall_time_s`` aside) and
+    the columns of its ``timeseries.csv`` (ball drop: ``t_s``, ``z_m``, ``v_m_s``, ``a_m_s2``,
+    ``approach_m``, ``force_n``, ``energy_j``; moving load: ``t_s``, ``load_position_m``,
+    ``deflection_midspan_m``, ``velocity_midspan_m_s``, ``acceleration_midspan_m_s2``,
+    ``moment_midspan_n_m`` and the same per further output point).
+
     ``kind = "contact"`` returns ``contact(scenario)``; ``kind = "sweep"`` returns
-    ``sweep(scenario)``. ``ball_drop`` and ``moving_load`` are not available from Python yet
-    (``ValueError``; use ``dyncontact run``).
+    ``sweep(scenario)``.
     """
     text, base = _case_text(scenario, "run")
     d = _native.run_text(text, base)
@@ -317,11 +324,14 @@ def run(scenario: Case) -> Dict[str, Any]:
         return contact(scenario)
     if kind == "sweep":
         return sweep(scenario)
+    if kind in ("ball_drop", "moving_load"):
+        import json
+
+        series = d["series"]
+        columns = {name: series[:, k] for k, name in enumerate(d["columns"])}
+        return {"summary": json.loads(d["summary_json"]), "timeseries": _maybe_frame(columns)}
     if kind != "vehicle_bridge":
-        raise ValueError(
-            f'`kind` = "{kind}": not available from Python yet (vehicle_bridge, contact and '
-            "sweep are); run it with `dyncontact run`"
-        )
+        raise ValueError(f'`kind` = "{kind}": not a scenario kind `run` knows')
     series = d["series"]
     columns = {name: series[:, k] for k, name in enumerate(d["columns"])}
     return {"summary": d["summary"], "timeseries": _maybe_frame(columns)}

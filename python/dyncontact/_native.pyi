@@ -72,8 +72,9 @@ def sweep_merge(shards: List[str]) -> Dict[str, Any]:
 def run_text(text: str, base: str) -> Dict[str, Any]:
     """A scenario file's text: ``kind = "vehicle_bridge"`` is run (GIL released, Ctrl-C
     polled) and returns ``kind``, ``summary`` (dict), ``columns`` (the names of
-    ``timeseries.csv``) and ``series`` (float64, rows × columns); other kinds return only
-    ``kind``."""
+    ``timeseries.csv``) and ``series`` (float64, rows × columns); ``ball_drop`` and
+    ``moving_load`` are run the same way and return ``summary_json`` (the CLI's summary.json
+    as JSON text) instead of ``summary``; other kinds return only ``kind``."""
 
 def _panic_for_tests(interruptible_run: bool) -> None:
     """Panics inside the boundary (tests that it raises InternalError). Not public API."""

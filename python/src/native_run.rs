@@ -63,6 +63,128 @@ enum RunOutcome {
     Interrupted(f64),
     /// A completed run.
     Done(Box<RunData>),
+    /// A completed ball-drop or moving-load run: its kind, its summary (the CLI's summary.json
+    /// as JSON text) and its time series (the columns of the CLI's timeseries.csv).
+    Table {
+        kind: &'static str,
+        summary: String,
+        columns: Vec<String>,
+        series: Vec<f64>,
+    },
+}
+
+/// A ball-drop run (on the worker thread), as `dyncontact run`: the summary of
+/// `sim::ball_drop_summary` and the time series of every sample.
+fn run_ball_drop(
+    config: sim::config::ball_drop::BallDropConfig,
+    stop: &std::sync::atomic::AtomicBool,
+) -> RunOutcome {
+    use std::ops::ControlFlow;
+    use std::sync::atomic::Ordering;
+    let mut observer = |_: sim::ball_drop::Progress| {
+        if stop.load(Ordering::Relaxed) {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
+    };
+    let result = match config.scenario.simulate_observed(true, &mut observer) {
+        Ok(r) => r,
+        Err(
+            e @ (sim::ball_drop::BallDropError::InvalidParameter { .. }
+            | sim::ball_drop::BallDropError::Material { .. }),
+        ) => return RunOutcome::Invalid(format!("ball drop: {e}")),
+        Err(e) => return RunOutcome::Failed(format!("ball drop: {e}")),
+    };
+    if !result.completed {
+        return RunOutcome::Interrupted(result.final_time);
+    }
+    let summary = sim::ball_drop_summary::summary(&config, &result);
+    let series = result
+        .samples
+        .iter()
+        .flat_map(sim::ball_drop_summary::row)
+        .collect();
+    RunOutcome::Table {
+        kind: "ball_drop",
+        summary: serde_json::to_string(&summary)
+            .unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}")),
+        columns: sim::ball_drop_summary::COLUMNS
+            .iter()
+            .map(|c| c.to_string())
+            .collect(),
+        series,
+    }
+}
+
+/// A moving-load run (on the worker thread), as `dyncontact run`: the summary of
+/// `sim::moving_load_summary` and the time series at the output points.
+fn run_moving_load(
+    config: sim::config::moving_load::MovingLoadConfig,
+    stop: &std::sync::atomic::AtomicBool,
+) -> RunOutcome {
+    use std::ops::ControlFlow;
+    use std::sync::atomic::Ordering;
+    let sim::config::moving_load::MovingLoadConfig {
+        bridge,
+        loads,
+        integrator_name,
+        settings,
+        points,
+    } = config;
+    let start = std::time::Instant::now();
+    let mut observer = |_: beam::StepProgress| {
+        if stop.load(Ordering::Relaxed) {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
+    };
+    let response = match beam::simulate_moving_loads_observed(
+        bridge.basis.as_ref(),
+        &bridge.damping,
+        &loads,
+        &settings,
+        &points,
+        &mut observer,
+    ) {
+        Ok(r) => r,
+        Err(
+            e @ (beam::BeamError::InvalidParameter { .. }
+            | beam::BeamError::InvalidCount { .. }
+            | beam::BeamError::OutsideSpan { .. }),
+        ) => return RunOutcome::Invalid(format!("moving-load run: {e}")),
+        Err(e) => return RunOutcome::Failed(format!("moving-load run: {e}")),
+    };
+    if !response.completed {
+        return RunOutcome::Interrupted(response.times.last().copied().unwrap_or(0.0));
+    }
+    let wall = start.elapsed().as_secs_f64();
+    let summary = match sim::moving_load_summary::summarise(
+        &bridge,
+        &loads,
+        &response,
+        &integrator_name,
+        settings.dt,
+        wall,
+    ) {
+        Ok(s) => s,
+        Err(e) => return RunOutcome::Failed(format!("moving-load run: {e}")),
+    };
+    let columns = sim::moving_load_summary::columns(&response);
+    let mut series = Vec::with_capacity(columns.len() * response.times.len());
+    let mut line = Vec::with_capacity(columns.len());
+    for i in 0..response.times.len() {
+        sim::moving_load_summary::row(&loads, &response, i, &mut line);
+        series.extend_from_slice(&line);
+    }
+    RunOutcome::Table {
+        kind: "moving_load",
+        summary: serde_json::to_string(&summary)
+            .unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}")),
+        columns,
+        series,
+    }
 }
 
 struct RunData {
@@ -85,8 +207,11 @@ fn run_vehicle_bridge(text: &str, base: &str, stop: &std::sync::atomic::AtomicBo
         Ok(c) => c,
         Err(e) => return RunOutcome::Invalid(e.to_string()),
     };
-    let ScenarioConfig::VehicleBridge(config) = config else {
-        return RunOutcome::Kind(config.kind());
+    let config = match config {
+        ScenarioConfig::VehicleBridge(config) => config,
+        ScenarioConfig::BallDrop(config) => return run_ball_drop(*config, stop),
+        ScenarioConfig::MovingLoad(config) => return run_moving_load(*config, stop),
+        other => return RunOutcome::Kind(other.kind()),
     };
     let sim::config::vehicle_bridge::VehicleBridgeConfig {
         scenario,
@@ -161,8 +286,9 @@ fn run_vehicle_bridge(text: &str, base: &str, stop: &std::sync::atomic::AtomicBo
 /// `dyncontact run`, the library's run driver `sim::vehicle_bridge::run`) with the GIL
 /// released and Ctrl-C polled every 50 ms, and returns `summary` (a dict of the run's key
 /// numbers, named as in the CLI's `summary.json`), `columns` (the names of `timeseries.csv`)
-/// and `series` (float64, one row per recorded step). Other kinds return only `kind` (the
-/// wrapper dispatches `contact` and `sweep`; `ball_drop` and `moving_load` are refused).
+/// and `series` (float64, one row per recorded step). `ball_drop` and `moving_load` run the
+/// same way and return `summary_json` (the CLI's summary.json as JSON text), `columns` and
+/// `series`. Other kinds return only `kind` (the wrapper dispatches `contact` and `sweep`).
 #[pyfunction]
 pub fn run_text<'py>(py: Python<'py>, text: &str, base: &str) -> PyResult<Bound<'py, PyDict>> {
     use pyo3::exceptions::PyKeyboardInterrupt;
@@ -181,6 +307,23 @@ pub fn run_text<'py>(py: Python<'py>, text: &str, base: &str) -> PyResult<Bound<
             )));
         }
         RunOutcome::Done(data) => data,
+        RunOutcome::Table {
+            kind,
+            summary,
+            columns,
+            series,
+        } => {
+            d.set_item("kind", kind)?;
+            d.set_item("summary_json", summary)?;
+            let width = columns.len().max(1);
+            let n_rows = series.len() / width;
+            d.set_item("columns", columns)?;
+            d.set_item(
+                "series",
+                PyArray1::from_vec(py, series).reshape([n_rows, width])?,
+            )?;
+            return Ok(d);
+        }
     };
     let RunData {
         summary,

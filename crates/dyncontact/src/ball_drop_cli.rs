@@ -13,12 +13,12 @@ use sim::ball_drop::{
 };
 use sim::config::ball_drop::BallDropConfig;
 
-use crate::ball_drop_summary::summary;
 use crate::errors::bad_input;
 use crate::interrupt::{self, Interrupted};
 use crate::output::{self, RunOutput};
 use crate::plot;
 use crate::plot::{Panel, Series};
+use sim::ball_drop_summary::{self, summary};
 
 /// The files a ball-drop run writes (one run's output set).
 const OUTPUT_SET: &[&str] = &["timeseries.csv", "summary.json", "ball_drop.png"];
@@ -50,19 +50,11 @@ pub fn run(prepared: BallDropConfig, out: &Path, json: bool) -> Result<()> {
     let summary = summary(&prepared, &result);
     output::write_csv(
         &run_out.path("timeseries.csv"),
-        &[
-            "t_s",
-            "z_m",
-            "v_m_s",
-            "a_m_s2",
-            "approach_m",
-            "force_n",
-            "energy_j",
-        ],
+        &ball_drop_summary::COLUMNS,
         result
             .samples
             .iter()
-            .map(|s| vec![s.t, s.z, s.v, s.a, s.approach, s.force, s.energy]),
+            .map(|s| ball_drop_summary::row(s).to_vec()),
     )?;
     output::write_summary(&run_out.path("summary.json"), &summary)?;
     if prepared.plot {

@@ -7,44 +7,13 @@ use std::time::Instant;
 
 use anyhow::{Result, anyhow};
 use beam::{MovingLoads, StepProgress, simulate_moving_loads_observed};
-use serde::Serialize;
-use sim::config::bridge::Bridge;
 use sim::config::moving_load::MovingLoadConfig;
+use sim::moving_load_summary::{self, MovingLoadSummary};
 
 use crate::errors::bad_input;
 use crate::interrupt::{self, Interrupted};
 use crate::output::{self, RunOutput};
 use crate::plot;
-
-#[derive(Debug, Serialize)]
-pub struct MovingLoadSummary {
-    /// False when the run stopped early (interrupted): the outputs then end at `time_reached`
-    /// and timeseries.csv is named timeseries.partial.csv.
-    pub completed: bool,
-    /// Simulated time reached \[s\].
-    pub time_reached: f64,
-    /// Why the run stopped early (absent when `completed`).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub stopped_by: Option<String>,
-    pub bridge: String,
-    pub speed: f64,
-    pub axles: usize,
-    pub integrator: String,
-    pub dt: f64,
-    pub modes_used: usize,
-    pub max_midspan_deflection: f64,
-    pub static_midspan_deflection: f64,
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub static_midspan_deflection_closed_form: Option<f64>,
-    /// max |w| / max |w_static| at midspan; null when the midspan does not move (a support).
-    pub dynamic_amplification: Option<f64>,
-    pub max_midspan_acceleration: f64,
-    pub max_midspan_moment: f64,
-    pub max_free_vibration_deflection: f64,
-    pub exit_time: f64,
-    pub simulated_time_s: f64,
-    pub wall_time_s: f64,
-}
 
 /// The files a moving-load run writes (one run's output set).
 const OUTPUT_SET: &[&str] = &["timeseries.csv", "summary.json", "midspan_deflection.png"];
@@ -90,7 +59,8 @@ pub fn run(config: MovingLoadConfig, out: &Path, json: bool) -> Result<()> {
         if input { bad_input(e) } else { e }
     })?;
     let wall = start.elapsed().as_secs_f64();
-    let summary = summarise(&bridge, &loads, &response, &name, dt, wall)?;
+    let summary = moving_load_summary::summarise(&bridge, &loads, &response, &name, dt, wall)
+        .map_err(|e| anyhow!("{e}"))?;
     write_timeseries(&run_out, &loads, &response)?;
     plot_outputs(&run_out, &loads, &response, &summary)?;
     output::write_summary(&run_out.path("summary.json"), &summary)?;
@@ -119,53 +89,6 @@ pub fn run(config: MovingLoadConfig, out: &Path, json: bool) -> Result<()> {
         .into());
     }
     Ok(())
-}
-
-fn summarise(
-    bridge: &Bridge,
-    loads: &MovingLoads,
-    r: &beam::MovingLoadResponse,
-    integrator: &str,
-    dt: f64,
-    wall: f64,
-) -> Result<MovingLoadSummary> {
-    let e = |err: beam::BeamError| anyhow!("{err}");
-    let single = loads.axles().len() == 1;
-    let closed_form = match (bridge.support, single) {
-        (Some(beam::Support::SimplySupported), true) => {
-            Some(beam::closed_form::ss_midspan_static_deflection(
-                loads.axles()[0].force.abs(),
-                bridge.reference.length,
-                bridge.reference.bending_stiffness,
-            ))
-        }
-        _ => None,
-    };
-    let end = r.times.last().copied().unwrap_or(0.0);
-    Ok(MovingLoadSummary {
-        completed: r.completed,
-        time_reached: end,
-        stopped_by: (!r.completed).then(|| "interrupt (SIGINT or SIGTERM)".to_string()),
-        bridge: bridge.description.clone(),
-        speed: loads.speed(),
-        axles: loads.axles().len(),
-        integrator: integrator.to_string(),
-        dt,
-        modes_used: bridge.basis.n_modes(),
-        max_midspan_deflection: r.max_abs_deflection(0).map_err(e)?,
-        static_midspan_deflection: r.max_abs_quasi_static(0).map_err(e)?,
-        static_midspan_deflection_closed_form: closed_form,
-        dynamic_amplification: Some(r.dynamic_amplification(0).map_err(e)?)
-            .filter(|d| d.is_finite()),
-        max_midspan_acceleration: r.max_abs_acceleration(0).map_err(e)?,
-        max_midspan_moment: r.max_abs_bending_moment(0).map_err(e)?,
-        max_free_vibration_deflection: r
-            .max_abs_deflection_between(0, r.exit_time, end)
-            .map_err(e)?,
-        exit_time: r.exit_time,
-        simulated_time_s: end,
-        wall_time_s: wall,
-    })
 }
 
 fn print_summary(s: &MovingLoadSummary) {
@@ -214,39 +137,14 @@ fn write_timeseries(
     loads: &MovingLoads,
     r: &beam::MovingLoadResponse,
 ) -> Result<()> {
-    let np = r.n_points();
-    // Column names: quantity, where, unit (docs/outputs.md).
-    let mut header = vec!["t_s".to_string(), "load_position_m".to_string()];
-    for (p, x) in r.points.iter().enumerate() {
-        let tag = if p == 0 {
-            "midspan".to_string()
-        } else {
-            format!("x{x}")
-        };
-        for (q, unit) in [
-            ("deflection", "m"),
-            ("velocity", "m_s"),
-            ("acceleration", "m_s2"),
-            ("moment", "n_m"),
-        ] {
-            header.push(format!("{q}_{tag}_{unit}"));
-        }
-    }
+    let header = moving_load_summary::columns(r);
     let names: Vec<&str> = header.iter().map(String::as_str).collect();
     output::write_csv(
         &dir.path("timeseries.csv"),
         &names,
-        r.times.iter().enumerate().map(|(i, &t)| {
-            let mut row = vec![t, loads.speed() * t];
-            for p in 0..np {
-                let k = i * np + p;
-                row.extend([
-                    r.deflection[k],
-                    r.velocity[k],
-                    r.acceleration[k],
-                    r.bending_moment[k],
-                ]);
-            }
+        (0..r.times.len()).map(|i| {
+            let mut row = Vec::new();
+            moving_load_summary::row(loads, r, i, &mut row);
             row
         }),
     )

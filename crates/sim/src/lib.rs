@@ -13,10 +13,12 @@
 //!   numerical defaults and the range checks of every key.
 
 pub mod ball_drop;
+pub mod ball_drop_summary;
 pub mod config;
 pub mod contact_case;
 pub mod creep_curve;
 pub mod modes;
+pub mod moving_load_summary;
 pub mod sweep;
 pub mod train;
 pub mod vehicle_bridge;
