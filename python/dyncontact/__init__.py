@@ -301,7 +301,11 @@ def run(scenario: Case) -> Dict[str, Any]:
     table}``: the summary holds the run's key numbers under the names of the CLI's
     ``summary.json`` (``max_midspan_deflection`` [m], ``max_midspan_acceleration`` [m/s²],
     ``dynamic_amplification``, ``contact`` (``max_force``, ``min_force`` [N], ``max_pressure``
-    [Pa], ``loss_of_contact_events``), ``vehicle``, ``solver``, ``warnings``); the time series
+    [Pa], ``loss_of_contact_events``, ``max_unloading_ratio``), ``vehicle``, ``solver``,
+    ``warnings``, and for trains ``vehicles`` (per bogie or articulated vehicle
+    ``max_body_acceleration`` [m/s²], ``max_body_pitch_acceleration`` [rad/s²],
+    ``max_bogie_acceleration`` [m/s²]), ``train`` (``name``, ``axles``, ``length`` [m],
+    ``mass`` [kg]) and ``comfort`` (EN 1990 A2 level)); the time series
     has the columns of ``timeseries.csv`` (``t_s`` [s], ``deflection_midspan_m`` [m], ...,
     ``contact_force`` [N] per wheel), one row per recorded step (``[output] every``), as a
     pandas DataFrame when pandas is installed, else a dict of float64 arrays.
@@ -332,6 +336,14 @@ def run(scenario: Case) -> Dict[str, Any]:
         return {"summary": json.loads(d["summary_json"]), "timeseries": _maybe_frame(columns)}
     if kind != "vehicle_bridge":
         raise ValueError(f'`kind` = "{kind}": not a scenario kind `run` knows')
+    import json
+
+    summary = d["summary"]
+    extra = json.loads(d["train_json"])
+    summary["contact"]["max_unloading_ratio"] = extra["max_unloading_ratio"]
+    for key in ("vehicles", "train", "comfort"):
+        if extra[key] is not None:
+            summary[key] = extra[key]
     series = d["series"]
     columns = {name: series[:, k] for k, name in enumerate(d["columns"])}
-    return {"summary": d["summary"], "timeseries": _maybe_frame(columns)}
+    return {"summary": summary, "timeseries": _maybe_frame(columns)}

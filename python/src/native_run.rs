@@ -189,6 +189,9 @@ fn run_moving_load(
 
 struct RunData {
     summary: sim::vehicle_bridge::RunSummary,
+    /// The train's part of summary.json (`vehicles`, `train`, `comfort`,
+    /// `max_unloading_ratio`) as JSON text (`sim::train_response`).
+    train_json: String,
     columns: Vec<String>,
     series: Vec<f64>,
     static_loads: Vec<f64>,
@@ -219,6 +222,7 @@ fn run_vehicle_bridge(text: &str, base: &str, stop: &std::sync::atomic::AtomicBo
         traction,
         every,
         warnings,
+        train,
         ..
     } = *config;
     let mut sim = match Simulation::with_vehicles(scenario, vehicles) {
@@ -255,7 +259,9 @@ fn run_vehicle_bridge(text: &str, base: &str, stop: &std::sync::atomic::AtomicBo
         series.extend_from_slice(&line);
     };
     record(&sim, 0, &mut series);
+    let mut monitor = sim::train_response::TrainMonitor::new(&sim);
     let mut observer = |s: &Simulation, info: run::StepInfo| {
+        monitor.observe(s);
         if info.step.is_multiple_of(every) || info.step == info.steps {
             record(s, info.iterations, &mut series);
         }
@@ -267,6 +273,15 @@ fn run_vehicle_bridge(text: &str, base: &str, stop: &std::sync::atomic::AtomicBo
     };
     match run::run(&mut sim, &mut observer) {
         Ok(summary) if summary.completed => RunOutcome::Done(Box::new(RunData {
+            train_json: serde_json::json!({
+                "vehicles": monitor.vehicles(),
+                "train": train.as_ref().map(sim::train_response::TrainSummary::of),
+                "comfort": train.as_ref().map(|_| {
+                    sim::train_response::ComfortSummary::of(summary.max_body_acceleration())
+                }),
+                "max_unloading_ratio": monitor.max_unloading_ratio(),
+            })
+            .to_string(),
             summary,
             columns,
             series,
@@ -327,6 +342,7 @@ pub fn run_text<'py>(py: Python<'py>, text: &str, base: &str) -> PyResult<Bound<
     };
     let RunData {
         summary,
+        train_json,
         columns,
         series,
         static_loads,
@@ -373,6 +389,7 @@ pub fn run_text<'py>(py: Python<'py>, text: &str, base: &str) -> PyResult<Bound<
     all_warnings.extend(summary.accuracy.warnings.iter().cloned());
     s.set_item("warnings", all_warnings)?;
     d.set_item("summary", s)?;
+    d.set_item("train_json", train_json)?;
     d.set_item("columns", columns)?;
     let n_rows = series.len() / width;
     d.set_item(

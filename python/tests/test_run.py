@@ -17,7 +17,9 @@ def columns(t) -> dict:
     return {k: t[k].to_numpy() for k in t.columns}
 
 
-@pytest.mark.parametrize("name", ["vehicle_bridge_biggs.toml", "vehicle_bridge_default.toml"])
+@pytest.mark.parametrize(
+    "name", ["vehicle_bridge_biggs.toml", "vehicle_bridge_default.toml", "train_bridge.toml"]
+)
 def test_vehicle_bridge_run_equals_the_cli(name, tmp_path):
     path = EXAMPLES / name
     r = dyncontact.run(path)
@@ -27,8 +29,13 @@ def test_vehicle_bridge_run_equals_the_cli(name, tmp_path):
     for key in ("time_reached", "max_midspan_deflection", "max_midspan_acceleration",
                 "max_quasi_static_deflection", "dynamic_amplification"):
         assert s[key] == cli[key], key
-    for key in ("max_force", "min_force", "loss_of_contact_events"):
+    for key in ("max_force", "min_force", "loss_of_contact_events", "max_unloading_ratio"):
         assert s["contact"][key] == cli["contact"][key], key
+    # The train's part (trains only): per-vehicle peaks, the train, the comfort level.
+    for key in ("vehicles", "train", "comfort"):
+        assert (key in s) == (key in cli), key
+        if key in cli:
+            assert s[key] == cli[key], key
     assert s["vehicle"]["static_wheel_loads"] == cli["vehicle"]["static_wheel_loads"]
     for key in ("steps", "max_iterations_per_step", "failed_steps"):
         assert s["solver"][key] == cli["solver"][key], key

@@ -51,37 +51,7 @@ pub struct ContactSummary {
     pub max_unloading_ratio: f64,
 }
 
-/// Per bogie vehicle: peak accelerations.
-#[derive(Serialize, Clone, Copy, Default)]
-pub struct BogieVehicleMax {
-    /// Car body vertical \[m/s²\].
-    pub max_body_acceleration: f64,
-    /// Car body pitch \[rad/s²\].
-    pub max_body_pitch_acceleration: f64,
-    /// Bogies vertical \[m/s²\].
-    pub max_bogie_acceleration: f64,
-}
-
-/// The train of a `[train]` scenario.
-#[derive(Serialize)]
-pub struct TrainSummary {
-    pub name: String,
-    pub axles: usize,
-    /// First axle to last \[m\].
-    pub length: f64,
-    /// \[kg\].
-    pub mass: f64,
-}
-
-/// Passenger comfort (EN 1990 A2.4.4.3.2): the largest vertical car-body acceleration and the
-/// level it reaches.
-#[derive(Serialize)]
-pub struct ComfortSummary {
-    pub max_body_acceleration: f64,
-    /// `very good` (≤ 1.0 m/s²), `good` (≤ 1.3), `acceptable` (≤ 2.0) or `null` (worse).
-    pub level: Option<&'static str>,
-    pub levels: Vec<(&'static str, f64)>,
-}
+pub use sim::train_response::{ComfortSummary, TrainSummary, VehicleMax as BogieVehicleMax};
 
 #[derive(Serialize)]
 pub struct VehicleSummary {
@@ -219,7 +189,7 @@ pub fn simulate_full(
     recorder.record(&sim, 0)?;
     let mut buf = Vec::new();
     let mut write_error = None;
-    let mut vehicle_max = vec![BogieVehicleMax::default(); sim.multibody_vehicle_count()];
+    let mut monitor = sim::train_response::TrainMonitor::new(&sim);
     // Pictures when the leading wheel passes 1/4, 1/2, 3/4 of the span and the span's end.
     let picture_at: Vec<f64> = if groups.is_empty() {
         Vec::new()
@@ -227,7 +197,6 @@ pub fn simulate_full(
         vec![0.25 * length, 0.5 * length, 0.75 * length, length]
     };
     let mut pictures = Vec::new();
-    let mut max_unloading = 0.0f64;
     interrupt::stop_at_next_step();
     // The run driver steps the simulation and computes the summary (maxima, amplification);
     // this observer streams the time series, takes the pressure snapshots and stops the run
@@ -239,20 +208,7 @@ pub fn simulate_full(
             write_error = Some(e);
             return ControlFlow::Break(());
         }
-        for (v, m) in vehicle_max.iter_mut().enumerate() {
-            if let Some(r) = sim.vehicle_response(v) {
-                m.max_body_acceleration = m.max_body_acceleration.max(r.body_acceleration.abs());
-                m.max_body_pitch_acceleration = m
-                    .max_body_pitch_acceleration
-                    .max(r.body_pitch_acceleration.abs());
-                m.max_bogie_acceleration = m.max_bogie_acceleration.max(r.bogie_acceleration.abs());
-            }
-        }
-        for (w, &load) in sim.wheels().iter().zip(sim.static_loads()) {
-            if load > 0.0 {
-                max_unloading = max_unloading.max((load - w.contact.force) / load);
-            }
-        }
+        monitor.observe(sim);
         if pictures.len() < picture_at.len() && sim.wheel_position(0) >= picture_at[pictures.len()]
         {
             pictures.push(vehicle_bridge_output::TrainPicture::of(sim, &groups));
@@ -312,23 +268,13 @@ pub fn simulate_full(
             min_force: run.min_force(),
             loss_of_contact_events: run.loss_of_contact_events,
             max_pressure: (model != "rigid").then_some(run.max_pressure()),
-            max_unloading_ratio: max_unloading,
+            max_unloading_ratio: monitor.max_unloading_ratio(),
         },
-        vehicles: (!vehicle_max.is_empty()).then(|| vehicle_max.clone()),
-        comfort: train.as_ref().map(|_| {
-            let a = run.max_body_acceleration();
-            ComfortSummary {
-                max_body_acceleration: a,
-                level: sim::sweep::eurocode::comfort_level(a),
-                levels: sim::sweep::eurocode::COMFORT_LEVELS.to_vec(),
-            }
-        }),
-        train: train.as_ref().map(|t| TrainSummary {
-            name: t.name.clone(),
-            axles: t.axles(sim::vehicle_bridge::GRAVITY).map_or(0, |a| a.len()),
-            length: t.length(),
-            mass: t.mass(),
-        }),
+        vehicles: monitor.vehicles(),
+        comfort: train
+            .as_ref()
+            .map(|_| ComfortSummary::of(run.max_body_acceleration())),
+        train: train.as_ref().map(TrainSummary::of),
         vehicle: VehicleSummary {
             max_body_acceleration: run.max_body_acceleration(),
             max_wheel_acceleration: run.max_wheel_acceleration(),

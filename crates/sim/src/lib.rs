@@ -21,5 +21,6 @@ pub mod modes;
 pub mod moving_load_summary;
 pub mod sweep;
 pub mod train;
+pub mod train_response;
 pub mod vehicle_bridge;
 pub mod vehicle_bridge_series;
