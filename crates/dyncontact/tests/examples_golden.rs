@@ -95,7 +95,7 @@ fn every_example_has_a_golden_test() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .filter(|n| n.ends_with(".toml"))
         .collect();
-    assert_eq!(files.len(), 20, "{files:?}");
+    assert_eq!(files.len(), 21, "{files:?}");
     let missing: Vec<&String> = files
         .iter()
         .filter(|f| !this.contains(&format!("\"{f}\"")))
@@ -497,6 +497,25 @@ fn sweep_example_matches_the_docs() {
             q("trains/0/speed_at_max_acceleration", 90.28, 0.01),
             q("trains/0/dynamic_factor", 6.569, 0.001),
             q("trains/9/max_acceleration", 13.71, 0.01),
+        ],
+        "docs/sweep.md",
+    );
+}
+
+/// docs/sweep.md: the interaction sweep of two real trains' vehicle models.
+#[test]
+fn interaction_sweep_example_matches_the_docs() {
+    check(
+        "sweep_interaction.toml",
+        &["sweep"],
+        &[
+            n("runs", 6.0),
+            q("trains/0/max_acceleration", 4.560, 0.001),
+            q("trains/0/dynamic_factor", 2.245, 0.001),
+            q("trains/1/max_acceleration", 10.996, 0.001),
+            q("trains/1/max_deflection", 12.319e-3, 0.001e-3),
+            q("trains/1/dynamic_factor", 5.196, 0.001),
+            q("checks/governing_speed", 90.0, 1e-9),
         ],
         "docs/sweep.md",
     );
