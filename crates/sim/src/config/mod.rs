@@ -57,6 +57,7 @@ pub mod integrator;
 pub mod moving_load;
 pub mod sweep;
 pub mod train;
+mod train_wheels;
 pub mod vehicle_bridge;
 
 /// Scenario kinds of [`load`].

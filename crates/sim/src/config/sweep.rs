@@ -573,8 +573,8 @@ fn interaction_model(
                 t.name
             );
         }
-        let (wheels, layouts) =
-            vb::wheels_of(t, 0.0).map_err(|e| invalid!("[trains] train \"{}\": {e}", t.name))?;
+        let (wheels, layouts) = super::train_wheels::wheels_of(t, 0.0)
+            .map_err(|e| invalid!("[trains] train \"{}\": {e}", t.name))?;
         wheels_max = wheels_max.max(wheels.len());
         vehicles.push(TrainVehicles {
             wheels,

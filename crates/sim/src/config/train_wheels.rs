@@ -1,0 +1,194 @@
+//! The wheels and multibody vehicles of a train in the coupled vehicle–bridge model: a
+//! `[train]` table of `kind = "vehicle_bridge"`, or a train of the sweep's interaction model
+//! (`config::sweep`), laid out on the track, with the coupled model's checks of each vehicle.
+
+use super::ConfigError;
+use super::checks::{self, ranges};
+use crate::vehicle_bridge::{GRAVITY, WheelSpec};
+
+/// The wheels, speed and bogie vehicles of a `[train]`: vehicle i's leading axle at
+/// `position` − (its offset behind the train's leading axle); a quarter car or sprung mass is
+/// one wheel with its body, a bogie vehicle four bare wheelsets carrying its body and bogies
+/// (their `static_load` the suspended share, for the contact's static state and the checks).
+/// An articulated train owns one bare wheelset per axle, like a bogie vehicle. Moving forces
+/// need dynamics the coupled model does not have.
+#[allow(clippy::type_complexity)]
+pub(crate) fn train_wheels(
+    table: &super::train::TrainTable,
+) -> Result<
+    (
+        Vec<WheelSpec>,
+        f64,
+        Vec<crate::vehicle_bridge::VehicleLayout>,
+    ),
+    ConfigError,
+> {
+    let train = super::train::build(table, "train")?;
+    let speed = table
+        .speed
+        .ok_or_else(|| invalid!("[train]: missing `speed` [m/s]"))?;
+    ranges::SPEED.check("train.speed", speed)?;
+    let position = table.position.unwrap_or(0.0);
+    ranges::POSITION.check("train.position", position)?;
+    let (wheels, layouts) = wheels_of(&train, position)?;
+    Ok((wheels, speed, layouts))
+}
+
+/// The wheels and multibody vehicles of `train` with its leading axle at `position` \[m\]
+/// (see [`train_wheels`]); an error for vehicle types the coupled model does not have.
+pub(crate) fn wheels_of(
+    train: &crate::train::Train,
+    position: f64,
+) -> Result<(Vec<WheelSpec>, Vec<crate::vehicle_bridge::VehicleLayout>), ConfigError> {
+    use crate::train::VehicleSpec as V;
+    let g = GRAVITY;
+    let mut offset = 0.0;
+    let mut wheels = Vec::new();
+    let mut layouts = Vec::new();
+    for (i, v) in train.vehicles.iter().enumerate() {
+        let single = |wheel_mass: f64, body_mass: f64, k: f64, c: f64| WheelSpec {
+            position: position - offset,
+            wheel_mass,
+            body_mass,
+            suspension_stiffness: k,
+            suspension_damping: c,
+            static_load: 0.0,
+        };
+        let length = match v {
+            V::QuarterCar(q) => {
+                wheels.push(single(
+                    q.wheel_mass,
+                    q.body_mass,
+                    q.suspension_stiffness,
+                    q.suspension_damping,
+                ));
+                q.length
+            }
+            V::SprungMass(m) => {
+                wheels.push(single(
+                    0.0,
+                    m.body_mass,
+                    m.suspension_stiffness,
+                    m.suspension_damping,
+                ));
+                m.length
+            }
+            V::BogieVehicle(b) => {
+                layouts.push(crate::vehicle_bridge::VehicleLayout {
+                    vehicle: crate::vehicle_bridge::MultibodyVehicle::Bogie(*b),
+                    first_wheel: wheels.len(),
+                });
+                let suspended = (0.25 * b.body_mass + 0.5 * b.bogie_mass) * g;
+                for x in [
+                    0.0,
+                    b.wheelbase,
+                    b.bogie_spacing,
+                    b.bogie_spacing + b.wheelbase,
+                ] {
+                    wheels.push(WheelSpec {
+                        position: position - offset - x,
+                        wheel_mass: b.wheelset_mass,
+                        static_load: suspended,
+                        ..WheelSpec::default()
+                    });
+                }
+                for (key, value) in [
+                    ("primary_stiffness", b.primary_stiffness),
+                    ("secondary_stiffness", b.secondary_stiffness),
+                    ("wheelset_mass", b.wheelset_mass),
+                    ("bogie_mass", b.bogie_mass),
+                    ("body_pitch_inertia", b.body_pitch_inertia),
+                    ("bogie_pitch_inertia", b.bogie_pitch_inertia),
+                ] {
+                    if value <= 0.0 {
+                        bail!(
+                            "train vehicle {i}: `{key}` = {value}: a bogie vehicle in vehicle_bridge needs it positive"
+                        );
+                    }
+                }
+                // The body's static sag on both suspension stages.
+                let sag = 0.5 * b.body_mass * g / b.secondary_stiffness
+                    + (0.25 * b.body_mass + 0.5 * b.bogie_mass) * g / b.primary_stiffness;
+                if sag > crate::vehicle_bridge::MAX_STATIC_SAG {
+                    bail!(
+                        "train vehicle {i}: `primary_stiffness` = {}, `secondary_stiffness` = {}: too soft, the body would sag {sag:.3e} m under its weight (at most 10 m)",
+                        b.primary_stiffness,
+                        b.secondary_stiffness
+                    );
+                }
+                b.length
+            }
+            V::Articulated(a) => {
+                articulated_checks(i, a)?;
+                layouts.push(crate::vehicle_bridge::VehicleLayout {
+                    vehicle: crate::vehicle_bridge::MultibodyVehicle::Articulated(*a),
+                    first_wheel: wheels.len(),
+                });
+                // Each wheelset carries its bogie's suspended share (Train::axles).
+                let alone = crate::train::Train {
+                    name: String::new(),
+                    vehicles: vec![V::Articulated(*a)],
+                };
+                let axles = alone.axles(g).map_err(|e| invalid!("{e}"))?;
+                for (x, load) in axles.iter().map(|axle| (axle.offset, axle.load)) {
+                    wheels.push(WheelSpec {
+                        position: position - offset - x,
+                        wheel_mass: a.wheelset_mass,
+                        static_load: load - a.wheelset_mass * g,
+                        ..WheelSpec::default()
+                    });
+                }
+                a.length
+            }
+            other => bail!(
+                "train vehicle {i}: type = \"{}\" is not yet available in vehicle_bridge (the coupled model has quarter_car, sprung_mass, bogie_vehicle and articulated vehicles; use kind = \"moving_load\" or \"sweep\" for this train as moving forces)",
+                other.type_name()
+            ),
+        };
+        offset += length;
+    }
+    checks::count("the wheels of [train]", wheels.len(), 1, checks::MAX_WHEELS)?;
+    Ok((wheels, layouts))
+}
+
+/// The coupled model's requirements on an articulated train: positive masses, inertias and
+/// stiffnesses, at most [`MAX_ARTICULATED_BODIES`] bodies (one dense block of the step
+/// matrix), and a suspension that holds the bodies (static sag ≤ 10 m).
+fn articulated_checks(i: usize, a: &crate::train::Articulated) -> Result<(), ConfigError> {
+    if a.bodies > MAX_ARTICULATED_BODIES {
+        bail!(
+            "train vehicle {i}: `bodies` = {}: an articulated train in vehicle_bridge has 1 … {MAX_ARTICULATED_BODIES} bodies (split a longer rake into several articulated vehicles)",
+            a.bodies
+        );
+    }
+    for (key, value) in [
+        ("primary_stiffness", a.primary_stiffness),
+        ("secondary_stiffness", a.secondary_stiffness),
+        ("wheelset_mass", a.wheelset_mass),
+        ("bogie_mass", a.bogie_mass),
+        ("body_pitch_inertia", a.body_pitch_inertia),
+        ("bogie_pitch_inertia", a.bogie_pitch_inertia),
+    ] {
+        if value.is_nan() || value <= 0.0 {
+            bail!(
+                "train vehicle {i}: `{key}` = {value}: an articulated train in vehicle_bridge needs it positive"
+            );
+        }
+    }
+    // An inner bogie's static sag on both stages (a whole body on two secondary springs).
+    let g = GRAVITY;
+    let sag = 0.5 * a.body_mass * g / a.secondary_stiffness
+        + 0.5 * (a.body_mass + a.bogie_mass) * g / a.primary_stiffness;
+    if sag > crate::vehicle_bridge::MAX_STATIC_SAG {
+        bail!(
+            "train vehicle {i}: `primary_stiffness` = {}, `secondary_stiffness` = {}: too soft, the bodies would sag {sag:.3e} m under their weight (at most 10 m)",
+            a.primary_stiffness,
+            a.secondary_stiffness
+        );
+    }
+    Ok(())
+}
+
+/// Most bodies of one articulated vehicle in the coupled model (its 6n + 4 DOFs form one
+/// dense block of the step matrix, at most `linalg::MAX_DENSE_BLOCK` = 256).
+pub const MAX_ARTICULATED_BODIES: usize = 42;

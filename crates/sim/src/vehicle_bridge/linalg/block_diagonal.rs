@@ -1,0 +1,377 @@
+//! The contact-free step matrix A = c_M M + c_C C + c_K K (module [`super`]): block diagonal,
+//! with 1×1 modal blocks, 1×1/2×2 wheel blocks and one dense block per multibody vehicle,
+//! stored with the block inverses; full, pattern and absolute-value solves and products.
+
+use super::Singular;
+
+/// A block-diagonal matrix (up to a permutation) with 1×1 and 2×2 blocks and dense blocks
+/// of a multibody vehicle (any index set, at most [`MAX_DENSE_BLOCK`] indices), stored with
+/// the block inverses.
+#[derive(Debug, Clone, Default)]
+pub struct BlockDiagonal {
+    n: usize,
+    /// (first index, second index or usize::MAX, inverse entries [a, b, c, d] row-major).
+    blocks: Vec<(usize, usize, [f64; 4])>,
+    /// The matrix entries (same layout), kept for products and dense assembly.
+    entries: Vec<[f64; 4]>,
+    /// Dense blocks: indices, entries and inverse (row-major m × m).
+    dense: Vec<DenseBlock>,
+    /// The block of each index: `Some(Small(i))` (1×1/2×2 block i) or `Some(Dense(i))`.
+    owner: Vec<Option<Owner>>,
+}
+
+/// Which block an index belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Owner {
+    Small(usize),
+    Dense(usize),
+}
+
+/// Largest dense block: a bogie vehicle has 10 DOFs, an articulated train of n bodies
+/// 6n + 4 (n ≤ 42).
+pub const MAX_DENSE_BLOCK: usize = 256;
+
+#[derive(Debug, Clone, Default)]
+struct DenseBlock {
+    indices: Vec<usize>,
+    entries: Vec<f64>,
+    inverse: Vec<f64>,
+}
+
+/// Which matrix of a dense block [`BlockDiagonal::dense_apply`] applies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum DensePart {
+    Inverse,
+    AbsInverse,
+}
+
+/// `x ← B⁻¹ x` on a dense block's indices, by columns over the non-zeros of x there (a
+/// wheel's vector has one non-zero in its vehicle's block: O(m) instead of O(m²)).
+fn apply_dense_inverse(blk: &DenseBlock, x: &mut [f64], buf: &mut [f64; MAX_DENSE_BLOCK]) {
+    let m = blk.indices.len();
+    let out = &mut buf[..m];
+    out.fill(0.0);
+    for (c, &j) in blk.indices.iter().enumerate() {
+        let xj = x[j];
+        if xj != 0.0 {
+            for (r, o) in out.iter_mut().enumerate() {
+                *o += blk.inverse[r * m + c] * xj;
+            }
+        }
+    }
+    for (r, &j) in blk.indices.iter().enumerate() {
+        x[j] = out[r];
+    }
+}
+
+/// Marker for a 1×1 block.
+const NONE: usize = usize::MAX;
+
+const SINGULAR_BLOCK: Singular = Singular {
+    what: "step-matrix block",
+};
+
+impl BlockDiagonal {
+    /// An empty matrix of dimension `n` (every index must then be covered by a block).
+    pub fn new(n: usize) -> Self {
+        Self {
+            n,
+            blocks: Vec::with_capacity(n),
+            entries: Vec::with_capacity(n),
+            dense: Vec::new(),
+            owner: vec![None; n],
+        }
+    }
+
+    /// Removes all blocks (keeps the capacity).
+    pub fn clear(&mut self) {
+        self.blocks.clear();
+        self.entries.clear();
+        self.dense.clear();
+        self.owner.clear();
+        self.owner.resize(self.n, None);
+    }
+
+    /// Adds the dense block with row-major `entries` on `indices` (m ≤ [`MAX_DENSE_BLOCK`]);
+    /// its inverse by Gauss–Jordan elimination with partial pivoting. An error if it is
+    /// singular or not finite (the block is then not added).
+    pub fn push_dense(&mut self, indices: &[usize], entries: &[f64]) -> Result<(), Singular> {
+        let m = indices.len();
+        if m == 0 || m > MAX_DENSE_BLOCK || entries.len() != m * m {
+            return Err(SINGULAR_BLOCK);
+        }
+        let mut a = entries.to_vec();
+        let mut inv = vec![0.0; m * m];
+        for i in 0..m {
+            inv[i * m + i] = 1.0;
+        }
+        let scale = a.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+        if !(scale.is_finite() && scale > 0.0) {
+            return Err(SINGULAR_BLOCK);
+        }
+        for col in 0..m {
+            let pivot = (col..m)
+                .max_by(|&r, &q| a[r * m + col].abs().total_cmp(&a[q * m + col].abs()))
+                .unwrap_or(col);
+            if a[pivot * m + col].abs() <= 1e-14 * scale {
+                return Err(SINGULAR_BLOCK);
+            }
+            if pivot != col {
+                for j in 0..m {
+                    a.swap(pivot * m + j, col * m + j);
+                    inv.swap(pivot * m + j, col * m + j);
+                }
+            }
+            let p = a[col * m + col];
+            for j in 0..m {
+                a[col * m + j] /= p;
+                inv[col * m + j] /= p;
+            }
+            for r in 0..m {
+                if r != col {
+                    let f = a[r * m + col];
+                    if f != 0.0 {
+                        for j in 0..m {
+                            a[r * m + j] -= f * a[col * m + j];
+                            inv[r * m + j] -= f * inv[col * m + j];
+                        }
+                    }
+                }
+            }
+        }
+        if inv.iter().any(|v| !v.is_finite()) {
+            return Err(SINGULAR_BLOCK);
+        }
+        for &i in indices {
+            self.owner[i] = Some(Owner::Dense(self.dense.len()));
+        }
+        self.dense.push(DenseBlock {
+            indices: indices.to_vec(),
+            entries: entries.to_vec(),
+            inverse: inv,
+        });
+        Ok(())
+    }
+
+    /// `x ← B x` over the dense blocks (B = the inverses or their absolute values), with a
+    /// stack buffer (no allocation).
+    fn dense_apply(&self, x: &mut [f64], which: DensePart) {
+        let mut buf = [0.0; MAX_DENSE_BLOCK];
+        for b in &self.dense {
+            let m = b.indices.len();
+            let mat = &b.inverse;
+            for (r, out) in buf.iter_mut().enumerate().take(m) {
+                *out = (0..m)
+                    .map(|c| {
+                        let v = mat[r * m + c];
+                        let v = if which == DensePart::AbsInverse {
+                            v.abs()
+                        } else {
+                            v
+                        };
+                        v * x[b.indices[c]]
+                    })
+                    .sum();
+            }
+            for (r, &i) in b.indices.iter().enumerate() {
+                x[i] = buf[r];
+            }
+        }
+    }
+
+    /// Dimension n.
+    pub fn dimension(&self) -> usize {
+        self.n
+    }
+
+    /// Adds the 1×1 block `a` at index `i`; an error if `a` is zero or not finite (the block
+    /// is then not added).
+    pub fn push1(&mut self, i: usize, a: f64) -> Result<(), Singular> {
+        if a == 0.0 || !a.is_finite() {
+            return Err(SINGULAR_BLOCK);
+        }
+        self.owner[i] = Some(Owner::Small(self.blocks.len()));
+        self.blocks.push((i, NONE, [1.0 / a, 0.0, 0.0, 0.0]));
+        self.entries.push([a, 0.0, 0.0, 0.0]);
+        Ok(())
+    }
+
+    /// Adds the 2×2 block `[[a, b], [c, d]]` on indices (i, j); an error if it is singular or
+    /// not finite (the block is then not added).
+    pub fn push2(
+        &mut self,
+        i: usize,
+        j: usize,
+        a: f64,
+        b: f64,
+        c: f64,
+        d: f64,
+    ) -> Result<(), Singular> {
+        let det = a * d - b * c;
+        if det == 0.0 || !det.is_finite() {
+            return Err(SINGULAR_BLOCK);
+        }
+        self.owner[i] = Some(Owner::Small(self.blocks.len()));
+        self.owner[j] = Some(Owner::Small(self.blocks.len()));
+        self.blocks
+            .push((i, j, [d / det, -b / det, -c / det, a / det]));
+        self.entries.push([a, b, c, d]);
+        Ok(())
+    }
+
+    /// Number of blocks (small and dense): the range of [`Self::block_of`].
+    pub fn block_count(&self) -> usize {
+        self.blocks.len() + self.dense.len()
+    }
+
+    /// The block holding index `i` (an id below [`Self::block_count`]), if any.
+    pub fn block_of(&self, i: usize) -> Option<usize> {
+        match self.owner.get(i).copied().flatten()? {
+            Owner::Small(b) => Some(b),
+            Owner::Dense(d) => Some(self.blocks.len() + d),
+        }
+    }
+
+    /// `x ← A⁻¹ x` for an `x` that is zero outside `pattern` (and zero on the blocks it does
+    /// not touch, which is kept): only the blocks holding a non-zero of `x` at a pattern index
+    /// are applied. `support` receives the indices where the result can be non-zero, `blocks`
+    /// the ids of the blocks applied; `mark` (one entry per block, see
+    /// [`Self::block_count`]) must not hold `stamp` on entry and holds it on the applied
+    /// blocks on exit. Cost O(|pattern| + the sizes of the blocks applied), independent of n.
+    pub fn solve_pattern_in_place(
+        &self,
+        x: &mut [f64],
+        pattern: &[usize],
+        support: &mut Vec<usize>,
+        blocks: &mut Vec<usize>,
+        mark: &mut [u64],
+        stamp: u64,
+    ) {
+        support.clear();
+        blocks.clear();
+        let mut buf = [0.0; MAX_DENSE_BLOCK];
+        for &i in pattern {
+            if x[i] == 0.0 {
+                continue;
+            }
+            let (Some(owner), Some(id)) = (self.owner.get(i).copied().flatten(), self.block_of(i))
+            else {
+                continue;
+            };
+            if mark[id] == stamp {
+                continue;
+            }
+            mark[id] = stamp;
+            blocks.push(id);
+            match owner {
+                Owner::Small(b) => {
+                    let (p, q, inv) = self.blocks[b];
+                    if q == NONE {
+                        x[p] *= inv[0];
+                        support.push(p);
+                    } else {
+                        let (xp, xq) = (x[p], x[q]);
+                        x[p] = inv[0] * xp + inv[1] * xq;
+                        x[q] = inv[2] * xp + inv[3] * xq;
+                        support.extend([p, q]);
+                    }
+                }
+                Owner::Dense(d) => {
+                    let blk = &self.dense[d];
+                    apply_dense_inverse(blk, x, &mut buf);
+                    support.extend_from_slice(&blk.indices);
+                }
+            }
+        }
+    }
+
+    /// `x ← A⁻¹ x` in place.
+    pub fn solve_in_place(&self, x: &mut [f64]) {
+        self.dense_apply(x, DensePart::Inverse);
+        for &(i, j, inv) in &self.blocks {
+            if j == NONE {
+                x[i] *= inv[0];
+            } else {
+                let (xi, xj) = (x[i], x[j]);
+                x[i] = inv[0] * xi + inv[1] * xj;
+                x[j] = inv[2] * xi + inv[3] * xj;
+            }
+        }
+    }
+
+    /// `x ← |A⁻¹| x` in place, with the entrywise absolute value of each block's inverse (a
+    /// bound on how an error vector of x's magnitudes propagates through a solve).
+    pub fn solve_abs_in_place(&self, x: &mut [f64]) {
+        self.dense_apply(x, DensePart::AbsInverse);
+        for &(i, j, inv) in &self.blocks {
+            if j == NONE {
+                x[i] *= inv[0].abs();
+            } else {
+                let (xi, xj) = (x[i], x[j]);
+                x[i] = inv[0].abs() * xi + inv[1].abs() * xj;
+                x[j] = inv[2].abs() * xi + inv[3].abs() * xj;
+            }
+        }
+    }
+
+    /// `y = A x`.
+    pub fn mul(&self, x: &[f64], y: &mut [f64]) {
+        for b in &self.dense {
+            let m = b.indices.len();
+            for (r, &i) in b.indices.iter().enumerate() {
+                y[i] = (0..m).map(|c| b.entries[r * m + c] * x[b.indices[c]]).sum();
+            }
+        }
+        for (&(i, j, _), e) in self.blocks.iter().zip(&self.entries) {
+            if j == NONE {
+                y[i] = e[0] * x[i];
+            } else {
+                y[i] = e[0] * x[i] + e[1] * x[j];
+                y[j] = e[2] * x[i] + e[3] * x[j];
+            }
+        }
+    }
+
+    /// Writes the entries of A into the upper-left n × n corner of `mat` (the rest untouched).
+    pub fn write_into(&self, mat: &mut faer::MatMut<'_, f64>) {
+        for b in &self.dense {
+            let m = b.indices.len();
+            for (r, &i) in b.indices.iter().enumerate() {
+                for (c, &j) in b.indices.iter().enumerate() {
+                    mat[(i, j)] = b.entries[r * m + c];
+                }
+            }
+        }
+        for (&(i, j, _), e) in self.blocks.iter().zip(&self.entries) {
+            mat[(i, i)] = e[0];
+            if j != NONE {
+                mat[(i, j)] = e[1];
+                mat[(j, i)] = e[2];
+                mat[(j, j)] = e[3];
+            }
+        }
+    }
+
+    /// The dense matrix, row-major n × n.
+    pub fn to_dense(&self) -> Vec<f64> {
+        let n = self.n;
+        let mut a = vec![0.0; n * n];
+        for b in &self.dense {
+            let m = b.indices.len();
+            for (r, &i) in b.indices.iter().enumerate() {
+                for (c, &j) in b.indices.iter().enumerate() {
+                    a[i * n + j] = b.entries[r * m + c];
+                }
+            }
+        }
+        for (&(i, j, _), e) in self.blocks.iter().zip(&self.entries) {
+            a[i * n + i] = e[0];
+            if j != NONE {
+                a[i * n + j] = e[1];
+                a[j * n + i] = e[2];
+                a[j * n + j] = e[3];
+            }
+        }
+        a
+    }
+}
