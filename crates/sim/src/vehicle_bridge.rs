@@ -175,6 +175,10 @@ struct Work {
     /// Per wheel: where ĝ and v can be non-zero (the modes and the wheel's DOF); every
     /// other entry of ĝ, v and their extrapolated copies stays zero.
     pattern: Vec<Vec<usize>>,
+    /// Per wheel: the number of modes its mode shapes can be non-zero on: all m while the
+    /// wheel or one of its columns is on the span, 0 off it (the per-wheel modal sums then
+    /// skip their zero terms; the mode entries of ĝ and v are zeroed when the wheel leaves).
+    span_modes: Vec<usize>,
     /// The extrapolated start's ĝ and v per wheel, and the list of all wheels.
     g_act: Vec<Vec<f64>>,
     v_act: Vec<Vec<f64>>,
@@ -200,8 +204,8 @@ impl Work {
     /// Bridge deflection under wheel k, `w(x_k) = Σ_j q_j w_j(x_k)` \[m\], at the state `x`
     /// (mode shapes of the last [`Simulation::wheel_geometry`]).
     fn deflection_under(&self, k: usize, x: &[f64]) -> f64 {
-        let shapes = &self.shape_at_wheel[k];
-        (0..shapes.len()).map(|j| x[j] * shapes[j]).sum()
+        let shapes = &self.shape_at_wheel[k][..self.span_modes[k]];
+        shapes.iter().enumerate().map(|(j, s)| x[j] * s).sum()
     }
 
     /// The approach of wheel k, `δ_k = z_w − w(x_k) + r(x_k)` \[m\] (module documentation),

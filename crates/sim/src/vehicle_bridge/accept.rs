@@ -38,12 +38,11 @@ impl Simulation {
         update: StateUpdate<'_>,
         counts: Accepted,
     ) -> Result<(), VehicleBridgeError> {
-        let m = self.scenario.bridge.n_modes();
         let nw = self.contacts.len();
         let w = &self.work;
         self.contact_load.fill(0.0);
         for k in 0..nw {
-            for j in 0..m {
+            for j in 0..w.span_modes[k] {
                 self.contact_load[j] += w.modal_load[k][j];
             }
             self.contact_load[self.wheel_dof[k]] = -w.outputs[k].force;

@@ -311,6 +311,7 @@ impl Simulation {
                 .iter()
                 .map(|&iw| (0..m).chain([iw]).collect())
                 .collect(),
+            span_modes: vec![m; nw],
             g_act: vec![vec![0.0; n]; nw],
             v_act: vec![vec![0.0; n]; nw],
             all_wheels: (0..nw).collect(),

@@ -159,6 +159,12 @@ pub(super) fn columns(contact: &LawModel) -> &[f64] {
     }
 }
 
+/// Whether the contact acts at the wheel's position only (one column at offset 0: the closed
+/// forms and the rigid constraint), so that its modal load is F w(x_k).
+pub(super) fn is_point(contact: &LawModel) -> bool {
+    columns(contact) == [0.0]
+}
+
 /// The grid and pressure \[Pa\] of the last evaluation for laws that solve the pressure field
 /// (`bem`); `None` for the closed forms and the rigid constraint.
 pub(super) fn pressure_field(contact: &LawModel) -> Option<(&Grid, &[f64])> {

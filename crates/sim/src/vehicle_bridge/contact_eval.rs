@@ -4,7 +4,7 @@
 use beam::Derivative;
 use halfspace::law::{ContactModel as LawModel, LawOutput};
 
-use super::contact::{columns, wheel_error};
+use super::contact::{columns, is_point, wheel_error};
 use super::{Simulation, VehicleBridgeError};
 
 impl Simulation {
@@ -41,6 +41,29 @@ impl Simulation {
                 }
                 w.r_at_columns[k][i] = self.scenario.irregularity.height(xc);
             }
+            // ĝ and v touch the modes only while the wheel or one of its columns is on the
+            // span (off it every mode shape is zero, and so are their mode entries).
+            let on_span = w.shape_at_wheel[k]
+                .iter()
+                .chain(&w.shape_at_columns[k])
+                .any(|&s| s != 0.0);
+            if !on_span && w.span_modes[k] > 0 {
+                for vector in [
+                    &mut w.g_hat[k],
+                    &mut w.v[k],
+                    &mut w.g_act[k],
+                    &mut w.v_act[k],
+                ] {
+                    vector[..m].fill(0.0);
+                }
+            }
+            w.span_modes[k] = if on_span { m } else { 0 };
+            let pattern = &mut w.pattern[k];
+            pattern.clear();
+            if on_span {
+                pattern.extend(0..m);
+            }
+            pattern.push(self.wheel_dof[k]);
         }
         Ok(())
     }
@@ -68,7 +91,7 @@ impl Simulation {
                     let ncol = law.columns().len();
                     for i in 0..ncol {
                         let cs = &w.shape_at_columns[k][i * m..(i + 1) * m];
-                        let wc: f64 = (0..m).map(|j| w.x[j] * cs[j]).sum();
+                        let wc: f64 = (0..w.span_modes[k]).map(|j| w.x[j] * cs[j]).sum();
                         w.column_gap[k][i] = (wc - defl) - (w.r_at_columns[k][i] - w.r_at_wheel[k]);
                     }
                     law.evaluate(delta, &w.column_gap[k], &mut w.column_force[k], tangent)
@@ -78,13 +101,19 @@ impl Simulation {
             w.outputs[k] = out;
             let load = &mut w.modal_load[k];
             load.fill(0.0);
-            add_modal_load(&w.shape_at_columns[k], &w.column_force[k], 1.0, load);
+            let mk = w.span_modes[k];
+            if mk > 0 {
+                add_modal_load(&w.shape_at_columns[k], &w.column_force[k], 1.0, load);
+            }
             // ĝ and v live on the modes and the wheel (`Work::pattern`); nothing else is
             // ever written, so the other entries stay zero.
+            // A point contact's ĝ is exactly −w(x_k) (its load is F w(x_k)), which keeps it
+            // equal across the iterations of a step (`linalg::CapacitanceWork` reuses A⁻¹ĝ).
+            let point = is_point(&self.contacts[k]);
             let (gh, v) = (&mut w.g_hat[k], &mut w.v[k]);
-            for j in 0..m {
+            for j in 0..mk {
                 v[j] = -shapes[j];
-                gh[j] = if out.force > 0.0 {
+                gh[j] = if out.force > 0.0 && !point {
                     -load[j] / out.force
                 } else {
                     -shapes[j]

@@ -3,7 +3,7 @@
 //! extrapolated quasi-Newton start, and the floating-point floor of the contact forces.
 
 use super::accept::{Accepted, StateUpdate};
-use super::contact::is_rigid;
+use super::contact::{is_point, is_rigid};
 use super::contact_eval::add_modal_load;
 use super::linalg::{contact_update, dense_contact_update};
 use super::step::StepFailure;
@@ -48,18 +48,23 @@ impl Simulation {
             let scale = force / cols;
             // Only the pattern (modes and the wheel) is ever written, so the rest stays zero.
             let (gh, v) = (&mut w.g_act[k], &mut w.v_act[k]);
-            gh[..m].fill(0.0);
-            // I_k at the new position, held in `gh` first.
-            add_modal_load(
-                &w.shape_at_columns[k],
-                &w.column_force[k],
-                scale,
-                &mut gh[..m],
-            );
-            // −R gets +s I_k on the modes and −s F_k on the wheel; ĝ = (−I/F, +1).
-            for j in 0..m {
+            let mk = w.span_modes[k];
+            if mk > 0 {
+                gh[..m].fill(0.0);
+                // I_k at the new position, held in `gh` first.
+                add_modal_load(
+                    &w.shape_at_columns[k],
+                    &w.column_force[k],
+                    scale,
+                    &mut gh[..m],
+                );
+            }
+            // −R gets +s I_k on the modes and −s F_k on the wheel; ĝ = (−I/F, +1), exactly
+            // −w(x_k) for a point contact (as in `evaluate_contacts`).
+            let point = is_point(&self.contacts[k]);
+            for j in 0..mk {
                 w.res[j] += s * gh[j];
-                gh[j] = -gh[j] / force;
+                gh[j] = if point { -shapes[j] } else { -gh[j] / force };
                 v[j] = -shapes[j];
             }
             w.res[iw] -= s * force;
@@ -104,7 +109,6 @@ impl Simulation {
     /// below it is round-off: for a 2.8e5 N moving mass at Δt = 2e-5 s it is 2.9e-2 N,
     /// far above ε |F| because the step matrix A ~ m/(β Δt²) is large.
     fn force_floor(&mut self, s: f64) {
-        let m = self.scenario.bridge.n_modes();
         let w = &mut self.work;
         let e = &mut w.floor_residual;
         self.a_matrix.mul(&w.x, e);
@@ -112,7 +116,7 @@ impl Simulation {
             *ei = ei.abs() + w.r[i].abs();
         }
         for k in 0..self.contacts.len() {
-            for j in 0..m {
+            for j in 0..w.span_modes[k] {
                 e[j] += s * w.modal_load[k][j].abs();
             }
             e[self.wheel_dof[k]] += s * w.outputs[k].force.abs();
@@ -123,13 +127,15 @@ impl Simulation {
             let iw = self.wheel_dof[k];
             let shapes = &w.shape_at_wheel[k];
             let approach_scale = w.x[iw].abs()
-                + (0..m).map(|j| (w.x[j] * shapes[j]).abs()).sum::<f64>()
+                + (0..w.span_modes[k])
+                    .map(|j| (w.x[j] * shapes[j]).abs())
+                    .sum::<f64>()
                 + w.r_at_wheel[k].abs();
             let pattern = &w.pattern[k];
             let propagated: f64 = pattern.iter().map(|&i| w.v[k][i].abs() * e[i]).sum();
             let v_ainv_g = w
                 .cap
-                .quadratic_form(&self.a_matrix, &w.g_hat[k], &w.v[k], pattern);
+                .quadratic_form(&self.a_matrix, k, &w.g_hat[k], &w.v[k], pattern);
             let compliance = if is_rigid(&self.contacts[k]) || w.outputs[k].stiffness <= 0.0 {
                 0.0
             } else {
@@ -254,9 +260,8 @@ impl Simulation {
             for i in 0..n {
                 w.res[i] = w.r[i] - w.res[i];
             }
-            let m = self.scenario.bridge.n_modes();
             for k in 0..nw {
-                for j in 0..m {
+                for j in 0..w.span_modes[k] {
                     w.res[j] += s * w.modal_load[k][j];
                 }
                 w.res[self.wheel_dof[k]] -= s * w.outputs[k].force;

@@ -18,6 +18,16 @@ pub struct BlockDiagonal {
     dense: Vec<DenseBlock>,
     /// The block of each index: `Some(Small(i))` (1×1/2×2 block i) or `Some(Dense(i))`.
     owner: Vec<Option<Owner>>,
+    /// Changes whenever the matrix does (unique across all matrices of the process), so that
+    /// solves cached against it (`low_rank::CapacitanceWork`) know when they are stale.
+    version: u64,
+}
+
+/// The source of [`BlockDiagonal`] versions.
+static NEXT_VERSION: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+
+fn next_version() -> u64 {
+    NEXT_VERSION.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
 }
 
 /// Which block an index belongs to.
@@ -47,7 +57,20 @@ enum DensePart {
 
 /// `x ← B⁻¹ x` on a dense block's indices, by columns over the non-zeros of x there (a
 /// wheel's vector has one non-zero in its vehicle's block: O(m) instead of O(m²)).
-fn apply_dense_inverse(blk: &DenseBlock, x: &mut [f64], buf: &mut [f64; MAX_DENSE_BLOCK]) {
+fn apply_dense_inverse(blk: &DenseBlock, x: &mut [f64]) {
+    let m = blk.indices.len();
+    if m <= SMALL_DENSE_BLOCK {
+        apply_dense_inverse_with(blk, x, &mut [0.0; SMALL_DENSE_BLOCK]);
+    } else {
+        apply_dense_inverse_with(blk, x, &mut [0.0; MAX_DENSE_BLOCK]);
+    }
+}
+
+/// Dense blocks up to this size use a small stack buffer (zeroing the largest one at every
+/// pattern solve would cost more than the solve of a bogie vehicle's 10 × 10 block).
+const SMALL_DENSE_BLOCK: usize = 16;
+
+fn apply_dense_inverse_with(blk: &DenseBlock, x: &mut [f64], buf: &mut [f64]) {
     let m = blk.indices.len();
     let out = &mut buf[..m];
     out.fill(0.0);
@@ -80,7 +103,13 @@ impl BlockDiagonal {
             entries: Vec::with_capacity(n),
             dense: Vec::new(),
             owner: vec![None; n],
+            version: next_version(),
         }
+    }
+
+    /// The matrix's version: changes at every modification (see the field).
+    pub fn version(&self) -> u64 {
+        self.version
     }
 
     /// Removes all blocks (keeps the capacity).
@@ -90,6 +119,7 @@ impl BlockDiagonal {
         self.dense.clear();
         self.owner.clear();
         self.owner.resize(self.n, None);
+        self.version = next_version();
     }
 
     /// Adds the dense block with row-major `entries` on `indices` (m ≤ [`MAX_DENSE_BLOCK`]);
@@ -150,6 +180,7 @@ impl BlockDiagonal {
             entries: entries.to_vec(),
             inverse: inv,
         });
+        self.version = next_version();
         Ok(())
     }
 
@@ -193,6 +224,7 @@ impl BlockDiagonal {
         self.owner[i] = Some(Owner::Small(self.blocks.len()));
         self.blocks.push((i, NONE, [1.0 / a, 0.0, 0.0, 0.0]));
         self.entries.push([a, 0.0, 0.0, 0.0]);
+        self.version = next_version();
         Ok(())
     }
 
@@ -216,6 +248,7 @@ impl BlockDiagonal {
         self.blocks
             .push((i, j, [d / det, -b / det, -c / det, a / det]));
         self.entries.push([a, b, c, d]);
+        self.version = next_version();
         Ok(())
     }
 
@@ -249,7 +282,6 @@ impl BlockDiagonal {
     ) {
         support.clear();
         blocks.clear();
-        let mut buf = [0.0; MAX_DENSE_BLOCK];
         for &i in pattern {
             if x[i] == 0.0 {
                 continue;
@@ -278,7 +310,7 @@ impl BlockDiagonal {
                 }
                 Owner::Dense(d) => {
                     let blk = &self.dense[d];
-                    apply_dense_inverse(blk, x, &mut buf);
+                    apply_dense_inverse(blk, x);
                     support.extend_from_slice(&blk.indices);
                 }
             }

@@ -9,13 +9,23 @@ use super::{BlockDiagonal, Singular};
 /// Work space of [`contact_update`]: A⁻¹ĝ per wheel with its support and blocks, the
 /// coupling groups, and the LU storage of each capacitance size met (allocated at its first
 /// use, then reused).
+///
+/// **Reuse.** A⁻¹ĝ of a wheel is kept with the ĝ (on its pattern) and the version of A it
+/// was computed from, and recomputed only when one of them changed. Within a time step ĝ
+/// changes only with the column forces (a point contact's ĝ is the mode shapes at the wheel,
+/// fixed by its position), and for a wheel off the span it is the unit vector of the wheel's
+/// DOF in every step, so most solves are reused. The reuse is exact: a reused vector is the
+/// one the solve would give (same inputs, same operations).
 #[derive(Debug, Default)]
 pub struct CapacitanceWork {
+    /// Per wheel: A⁻¹ĝ (n; zero outside `support`).
     ainv_g: Vec<Vec<f64>>,
-    /// Where each A⁻¹ĝ can be non-zero (all other entries of `ainv_g[c]` are zero).
+    /// Per wheel: where A⁻¹ĝ can be non-zero.
     support: Vec<Vec<usize>>,
-    /// The blocks of A each A⁻¹ĝ touches.
+    /// Per wheel: the blocks of A that A⁻¹ĝ touches.
     blocks: Vec<Vec<usize>>,
+    /// Per wheel: the key of the stored A⁻¹ĝ (A's version, the pattern and ĝ on it).
+    key: Vec<SolveKey>,
     /// Per block of A: the stamp of the last solve that applied it.
     mark: Vec<u64>,
     /// Per block of A: (stamp, first wheel of this update that touched it).
@@ -27,22 +37,49 @@ pub struct CapacitanceWork {
     order: Vec<usize>,
     group_start: Vec<usize>,
     rhs: Vec<f64>,
+    /// The capacitance matrix of one group (row-major).
+    cap: Vec<f64>,
     lu: Vec<DenseLu<f64>>,
-    /// Scratch of [`Self::quadratic_form`] (kept zero between calls).
-    scratch: Vec<f64>,
-    scratch_support: Vec<usize>,
-    scratch_blocks: Vec<usize>,
+    /// Solves done and reused (statistics for benchmarks and tests).
+    solves: u64,
+    reused: u64,
+}
+
+/// What a stored A⁻¹ĝ was computed from.
+#[derive(Debug, Default, Clone)]
+struct SolveKey {
+    /// The version of A (0: nothing stored).
+    version: u64,
+    pattern: Vec<usize>,
+    /// ĝ on the pattern, bit for bit.
+    g: Vec<u64>,
+}
+
+impl SolveKey {
+    fn matches(&self, version: u64, g: &[f64], pattern: &[usize]) -> bool {
+        self.version == version
+            && self.pattern == pattern
+            && pattern
+                .iter()
+                .zip(&self.g)
+                .all(|(&i, &bits)| g[i].to_bits() == bits)
+    }
+
+    fn set(&mut self, version: u64, g: &[f64], pattern: &[usize]) {
+        self.version = version;
+        self.pattern.clear();
+        self.pattern.extend_from_slice(pattern);
+        self.g.clear();
+        self.g.extend(pattern.iter().map(|&i| g[i].to_bits()));
+    }
 }
 
 impl CapacitanceWork {
     /// Work space for dimension n and up to `k_max` wheels.
     pub fn new(n: usize, k_max: usize) -> Self {
-        Self {
-            ainv_g: vec![vec![0.0; n]; k_max],
-            support: vec![Vec::new(); k_max],
-            blocks: vec![Vec::new(); k_max],
-            ..Self::default()
-        }
+        let mut work = Self::default();
+        work.reserve(n, k_max, 0);
+        work
     }
 
     /// Makes room for `k` wheels of dimension `n` and `blocks` blocks of A (allocates only
@@ -52,11 +89,13 @@ impl CapacitanceWork {
             self.ainv_g.clear();
             self.support.clear();
             self.blocks.clear();
+            self.key.clear();
         }
         while self.ainv_g.len() < k {
             self.ainv_g.push(vec![0.0; n]);
             self.support.push(Vec::new());
             self.blocks.push(Vec::new());
+            self.key.push(SolveKey::default());
         }
         if self.mark.len() != blocks {
             self.mark = vec![0; blocks];
@@ -65,36 +104,50 @@ impl CapacitanceWork {
         }
     }
 
-    /// `vᵀA⁻¹g` for vectors zero outside `pattern` (over the blocks g touches; no full solve).
+    /// A⁻¹ĝ of `wheel` into `ainv_g[wheel]`, reused when its key matches.
+    fn solve_wheel(&mut self, a: &BlockDiagonal, wheel: usize, g: &[f64], pattern: &[usize]) {
+        if self.key[wheel].matches(a.version(), g, pattern) {
+            self.reused += 1;
+            return;
+        }
+        self.solves += 1;
+        let x = &mut self.ainv_g[wheel];
+        for &i in &self.support[wheel] {
+            x[i] = 0.0;
+        }
+        for &i in pattern {
+            x[i] = g[i];
+        }
+        self.stamp += 1;
+        a.solve_pattern_in_place(
+            x,
+            pattern,
+            &mut self.support[wheel],
+            &mut self.blocks[wheel],
+            &mut self.mark,
+            self.stamp,
+        );
+        self.key[wheel].set(a.version(), g, pattern);
+    }
+
+    /// `vᵀA⁻¹g` of `wheel` for vectors zero outside `pattern` (over the blocks g touches; no
+    /// full solve; A⁻¹g is kept for [`contact_update`]).
     pub fn quadratic_form(
         &mut self,
         a: &BlockDiagonal,
+        wheel: usize,
         g: &[f64],
         v: &[f64],
         pattern: &[usize],
     ) -> f64 {
-        let n = g.len();
-        if self.scratch.len() != n {
-            self.scratch = vec![0.0; n];
-        }
-        self.reserve(n, 0, a.block_count());
-        for &i in pattern {
-            self.scratch[i] = g[i];
-        }
-        let stamp = self.next_stamp();
-        a.solve_pattern_in_place(
-            &mut self.scratch,
-            pattern,
-            &mut self.scratch_support,
-            &mut self.scratch_blocks,
-            &mut self.mark,
-            stamp,
-        );
-        let result = pattern.iter().map(|&i| v[i] * self.scratch[i]).sum();
-        for &i in self.scratch_support.iter().chain(pattern) {
-            self.scratch[i] = 0.0;
-        }
-        result
+        self.reserve(g.len(), wheel + 1, a.block_count());
+        self.solve_wheel(a, wheel, g, pattern);
+        pattern.iter().map(|&i| v[i] * self.ainv_g[wheel][i]).sum()
+    }
+
+    /// The pattern solves done and reused so far: (A⁻¹ĝ computed, A⁻¹ĝ reused).
+    pub fn solve_counts(&self) -> (u64, u64) {
+        (self.solves, self.reused)
     }
 
     /// The next stamp (never 0, the initial mark).
@@ -179,34 +232,17 @@ pub fn contact_update(
     if k == 0 {
         return Ok(());
     }
-    let n = x.len();
-    work.reserve(n, k, a.block_count());
-    // A⁻¹ĝ_c on the blocks ĝ_c touches (the rest of ainv_g[c] is kept zero).
-    for (c, &wheel) in active.iter().enumerate() {
-        for &i in &work.support[c] {
-            work.ainv_g[c][i] = 0.0;
-        }
-        let g = g_hat[wheel].as_ref();
-        let p = pattern[wheel].as_ref();
-        for &i in p {
-            work.ainv_g[c][i] = g[i];
-        }
-        let stamp = work.next_stamp();
-        a.solve_pattern_in_place(
-            &mut work.ainv_g[c],
-            p,
-            &mut work.support[c],
-            &mut work.blocks[c],
-            &mut work.mark,
-            stamp,
-        );
+    work.reserve(x.len(), g_hat.len(), a.block_count());
+    // A⁻¹ĝ_c on the blocks ĝ_c touches (the rest of ainv_g[wheel] is kept zero).
+    for &wheel in active {
+        work.solve_wheel(a, wheel, g_hat[wheel].as_ref(), pattern[wheel].as_ref());
     }
     // Coupling groups: wheels touching a common block.
     let update = work.next_stamp();
     work.parent.clear();
     work.parent.extend(0..k);
     for c in 0..k {
-        for &b in &work.blocks[c] {
+        for &b in &work.blocks[active[c]] {
             let (seen, first) = work.first[b];
             if seen == update {
                 let (ra, rb) = (find(&mut work.parent, c), find(&mut work.parent, first));
@@ -252,38 +288,101 @@ pub fn contact_update(
         if kg == 1 {
             // Sherman–Morrison: ΔF = (vᵀy + δ̃)/(1/k_c + s vᵀA⁻¹ĝ) = k_c(vᵀy + δ̃)/(1 + λ).
             let c = members[0];
-            let den = compliance[c] + s * v_dot(c, &work.ainv_g[c]);
+            let den = compliance[c] + s * v_dot(c, &work.ainv_g[active[c]]);
             if den == 0.0 || !den.is_finite() {
                 return Err(SINGULAR_CAPACITANCE);
             }
             df[c] = (v_dot(c, x) + delta_tilde[c]) / den;
             continue;
         }
-        let lu = lu_of_size(&mut work.lu, kg);
-        let mut cap = lu.matrix_mut();
+        // Capacitance matrix of the group and its right-hand side.
         work.rhs.clear();
-        for (r, &cr) in members.iter().enumerate() {
-            for (q, &cq) in members.iter().enumerate() {
-                let diag = if r == q { compliance[cr] } else { 0.0 };
-                cap[(r, q)] = diag + s * v_dot(cr, &work.ainv_g[cq]);
+        work.cap.clear();
+        for &cr in members {
+            for &cq in members {
+                let diag = if cr == cq { compliance[cr] } else { 0.0 };
+                work.cap
+                    .push(diag + s * v_dot(cr, &work.ainv_g[active[cq]]));
             }
             work.rhs.push(v_dot(cr, x) + delta_tilde[cr]);
         }
-        if !lu.factor() {
+        let solved = if kg <= SMALL_GROUP {
+            small_solve_in_place(&mut work.cap, &mut work.rhs)
+        } else {
+            let lu = lu_of_size(&mut work.lu, kg);
+            let mut m = lu.matrix_mut();
+            for r in 0..kg {
+                for q in 0..kg {
+                    m[(r, q)] = work.cap[r * kg + q];
+                }
+            }
+            let factored = lu.factor();
+            if factored {
+                lu.solve_in_place(&mut work.rhs);
+            }
+            factored
+        };
+        if !solved {
             return Err(SINGULAR_CAPACITANCE);
         }
-        lu.solve_in_place(&mut work.rhs);
         for (r, &cr) in members.iter().enumerate() {
             df[cr] = work.rhs[r];
         }
     }
     for c in 0..k {
         let f = s * df[c];
-        for &i in &work.support[c] {
-            x[i] -= f * work.ainv_g[c][i];
+        let wheel = active[c];
+        for &i in &work.support[wheel] {
+            x[i] -= f * work.ainv_g[wheel][i];
         }
     }
     Ok(())
+}
+
+/// Groups up to this size are solved by [`small_solve_in_place`]; larger ones by
+/// `integrate::DenseLu` (blocked kernels, whose set-up costs more than a small elimination).
+const SMALL_GROUP: usize = 16;
+
+/// Solves the row-major `m × m` system `a y = b` in place (`b ← y`, `a` destroyed) by Gaussian
+/// elimination with partial pivoting (Golub & Van Loan, Algorithm 3.4.1; references.md §R4.1).
+/// False if a pivot is zero or not finite (the matrix is singular to working precision).
+fn small_solve_in_place(a: &mut [f64], b: &mut [f64]) -> bool {
+    let m = b.len();
+    for col in 0..m {
+        let mut pivot = col;
+        for r in col + 1..m {
+            if a[r * m + col].abs() > a[pivot * m + col].abs() {
+                pivot = r;
+            }
+        }
+        let p = a[pivot * m + col];
+        if p == 0.0 || !p.is_finite() {
+            return false;
+        }
+        if pivot != col {
+            for j in col..m {
+                a.swap(pivot * m + j, col * m + j);
+            }
+            b.swap(pivot, col);
+        }
+        for r in col + 1..m {
+            let f = a[r * m + col] / p;
+            if f != 0.0 {
+                for j in col + 1..m {
+                    a[r * m + j] -= f * a[col * m + j];
+                }
+                b[r] -= f * b[col];
+            }
+        }
+    }
+    for r in (0..m).rev() {
+        let mut y = b[r];
+        for j in r + 1..m {
+            y -= a[r * m + j] * b[j];
+        }
+        b[r] = y / a[r * m + r];
+    }
+    true
 }
 
 const SINGULAR_CAPACITANCE: Singular = Singular {
