@@ -331,7 +331,7 @@ fn reused_solves_equal_fresh_ones_bit_for_bit() {
     let compliance: Vec<f64> = (0..wheels).map(|k| 1e-7 * (1.0 + k as f64)).collect();
     let zero = vec![0.0; wheels];
     let mut kept = CapacitanceWork::new(n, wheels);
-    let mut update = |a: &BlockDiagonal,
+    let update = |a: &BlockDiagonal,
                       gs: &[Vec<f64>],
                       active: &[usize],
                       rng: &mut ChaCha8Rng,
