@@ -73,6 +73,7 @@ mod coupling;
 mod error;
 pub mod irregularity;
 pub mod linalg;
+pub mod moving_forces;
 mod outputs;
 mod picard;
 pub mod radau;
@@ -91,6 +92,7 @@ pub use contact::ContactGeometry;
 pub use error::VehicleBridgeError;
 pub use irregularity::{Irregularity, RandomProfile, TrackSpectrum};
 use linalg::{BlockDiagonal, CapacitanceWork, DenseWork};
+pub use moving_forces::MovingForce;
 pub use outputs::{SolverStats, WheelSample};
 pub use radau::Radau5Spec;
 pub use run::{
@@ -179,6 +181,10 @@ struct Work {
     /// wheel or one of its columns is on the span, 0 off it (the per-wheel modal sums then
     /// skip their zero terms; the mode entries of ĝ and v are zeroed when the wheel leaves).
     span_modes: Vec<usize>,
+    /// The moving forces' modal loads at the time of the last `moving_force_load` (m) and
+    /// the mode shapes there (scratch, m).
+    moving_load: Vec<f64>,
+    force_shapes: Vec<f64>,
     /// The extrapolated start's ĝ and v per wheel, and the list of all wheels.
     g_act: Vec<Vec<f64>>,
     v_act: Vec<Vec<f64>>,

@@ -79,7 +79,7 @@ fn a_quarter_car_train_drives_the_coupled_model() {
 }
 
 #[test]
-fn trains_the_coupled_model_cannot_run_yet_are_refused_with_the_remedy() {
+fn a_train_of_moving_forces_only_is_refused_by_the_coupled_model_with_the_remedy() {
     let forces = "[train]\nspeed = 50.0\n[[train.vehicles]]\ntype = \"moving_forces\"\nlength = 20.0\naxle_positions = [0.0, 3.0]\naxle_loads = [1.0e5, 1.0e5]\n";
     let e = load(
         &format!("kind = \"vehicle_bridge\"\n{BRIDGE}{forces}"),

@@ -32,6 +32,7 @@ fn scenario(
     dt: f64,
 ) -> Scenario {
     Scenario {
+        moving_forces: Vec::new(),
         bridge,
         damping: ModalDamping::Undamped,
         wheels,

@@ -17,6 +17,7 @@ fn run(contact: ContactModel) -> (Vec<f64>, Vec<f64>, Simulation) {
         .unwrap(),
     );
     let scenario = Scenario {
+        moving_forces: Vec::new(),
         bridge: basis,
         damping: ModalDamping::Uniform(0.02),
         wheels: vec![WheelSpec {

@@ -332,10 +332,10 @@ fn reused_solves_equal_fresh_ones_bit_for_bit() {
     let zero = vec![0.0; wheels];
     let mut kept = CapacitanceWork::new(n, wheels);
     let update = |a: &BlockDiagonal,
-                      gs: &[Vec<f64>],
-                      active: &[usize],
-                      rng: &mut ChaCha8Rng,
-                      kept: &mut CapacitanceWork| {
+                  gs: &[Vec<f64>],
+                  active: &[usize],
+                  rng: &mut ChaCha8Rng,
+                  kept: &mut CapacitanceWork| {
         let rhs: Vec<f64> = (0..n).map(|_| rng.random::<f64>() - 0.5).collect();
         let run = |work: &mut CapacitanceWork| {
             let mut x = rhs.clone();

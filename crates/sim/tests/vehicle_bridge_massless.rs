@@ -30,6 +30,7 @@ fn basis(modes: usize) -> AnalyticBeam {
 
 fn scenario(modes: usize, wheel: WheelSpec, speed: f64, contact: ContactModel) -> Scenario {
     Scenario {
+        moving_forces: Vec::new(),
         bridge: Box::new(basis(modes)),
         damping: ModalDamping::Undamped,
         wheels: vec![wheel],

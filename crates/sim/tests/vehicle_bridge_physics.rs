@@ -28,6 +28,7 @@ fn geometry() -> ContactGeometry {
 
 fn scenario(wheels: Vec<WheelSpec>, contact: ContactModel, dt: f64, modes: usize) -> Scenario {
     Scenario {
+        moving_forces: Vec::new(),
         bridge: Box::new(basis(modes)),
         damping: ModalDamping::Undamped,
         wheels,

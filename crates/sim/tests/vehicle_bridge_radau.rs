@@ -13,6 +13,7 @@ const L: f64 = 25.0;
 
 fn scenario(dt: f64, contact: ContactModel, depth: f64) -> Scenario {
     Scenario {
+        moving_forces: Vec::new(),
         bridge: Box::new(
             AnalyticBeam::new(
                 Support::SimplySupported,

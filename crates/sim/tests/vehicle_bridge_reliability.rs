@@ -23,6 +23,7 @@ fn basis(modes: usize) -> AnalyticBeam {
 
 fn scenario(wheels: Vec<WheelSpec>, speed: f64, dt: f64, modes: usize) -> Scenario {
     Scenario {
+        moving_forces: Vec::new(),
         bridge: Box::new(basis(modes)),
         damping: ModalDamping::Undamped,
         wheels,

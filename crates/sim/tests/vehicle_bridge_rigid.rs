@@ -32,6 +32,7 @@ fn scenario(
     dt: f64,
 ) -> Scenario {
     Scenario {
+        moving_forces: Vec::new(),
         bridge: Box::new(basis(length, modes)),
         damping: ModalDamping::Undamped,
         wheels: vec![wheel],

@@ -28,6 +28,7 @@ fn scenario() -> Scenario {
         static_load: 0.0,
     };
     Scenario {
+        moving_forces: Vec::new(),
         bridge: Box::new(
             AnalyticBeam::new(
                 Support::SimplySupported,

@@ -47,6 +47,7 @@ fn scenario(contact: ContactModel, steps: usize) -> Scenario {
     let dx = 2.0 * 1.25 * hertz(2.5 * weight()).a / BEM_N as f64;
     let dt = dx / speed;
     Scenario {
+        moving_forces: Vec::new(),
         bridge: Box::new(
             AnalyticBeam::new(
                 Support::SimplySupported,

@@ -29,6 +29,7 @@ fn geometry() -> ContactGeometry {
 
 fn scenario(wheels: Vec<WheelSpec>, contact: ContactModel, dt: f64) -> Scenario {
     Scenario {
+        moving_forces: Vec::new(),
         bridge: Box::new(basis(10)),
         damping: ModalDamping::Uniform(0.02),
         wheels,

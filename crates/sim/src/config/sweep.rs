@@ -566,19 +566,20 @@ fn interaction_model(
     for t in trains {
         if t.vehicles
             .iter()
-            .any(|v| matches!(v, VehicleSpec::MovingForces(_)))
+            .all(|v| matches!(v, VehicleSpec::MovingForces(_)))
         {
             bail!(
                 "[trains] model = \"interaction\": train \"{}\" is given by its axle loads only (moving forces; EN 1991-2 defines HSLM-A so), and the interaction model needs vehicle models: use presets or train files of quarter_car, sprung_mass, bogie_vehicle or articulated vehicles, or model = \"moving_forces\"",
                 t.name
             );
         }
-        let (wheels, layouts) = super::train_wheels::wheels_of(t, 0.0)
+        let on_track = super::train_wheels::wheels_of(t, 0.0)
             .map_err(|e| invalid!("[trains] train \"{}\": {e}", t.name))?;
-        wheels_max = wheels_max.max(wheels.len());
+        wheels_max = wheels_max.max(on_track.wheels.len());
         vehicles.push(TrainVehicles {
-            wheels,
-            layouts,
+            wheels: on_track.wheels,
+            layouts: on_track.layouts,
+            forces: on_track.forces,
             dt: f64::NAN,
         });
     }
@@ -598,6 +599,7 @@ fn interaction_model(
             bridge: Box::new(std::sync::Arc::clone(&model.basis)),
             damping: model.damping.clone(),
             wheels: v.wheels.clone(),
+            moving_forces: v.forces.clone(),
             speed: top_speed,
             contact,
             geometry,

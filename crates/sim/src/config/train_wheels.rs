@@ -10,19 +10,11 @@ use crate::vehicle_bridge::{GRAVITY, WheelSpec};
 /// `position` − (its offset behind the train's leading axle); a quarter car or sprung mass is
 /// one wheel with its body, a bogie vehicle four bare wheelsets carrying its body and bogies
 /// (their `static_load` the suspended share, for the contact's static state and the checks).
-/// An articulated train owns one bare wheelset per axle, like a bogie vehicle. Moving forces
-/// need dynamics the coupled model does not have.
-#[allow(clippy::type_complexity)]
+/// An articulated train owns one bare wheelset per axle, like a bogie vehicle. A
+/// `moving_forces` vehicle's axles are moving forces (no DOFs, no contact).
 pub(crate) fn train_wheels(
     table: &super::train::TrainTable,
-) -> Result<
-    (
-        Vec<WheelSpec>,
-        f64,
-        Vec<crate::vehicle_bridge::VehicleLayout>,
-    ),
-    ConfigError,
-> {
+) -> Result<(TrainOnTrack, f64), ConfigError> {
     let train = super::train::build(table, "train")?;
     let speed = table
         .speed
@@ -30,21 +22,33 @@ pub(crate) fn train_wheels(
     ranges::SPEED.check("train.speed", speed)?;
     let position = table.position.unwrap_or(0.0);
     ranges::POSITION.check("train.position", position)?;
-    let (wheels, layouts) = wheels_of(&train, position)?;
-    Ok((wheels, speed, layouts))
+    Ok((wheels_of(&train, position)?, speed))
 }
 
-/// The wheels and multibody vehicles of `train` with its leading axle at `position` \[m\]
-/// (see [`train_wheels`]); an error for vehicle types the coupled model does not have.
+/// A train laid out for the coupled model.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct TrainOnTrack {
+    /// The wheels (with their bodies for quarter cars and sprung masses).
+    pub(crate) wheels: Vec<WheelSpec>,
+    /// The multibody vehicles on those wheels.
+    pub(crate) layouts: Vec<crate::vehicle_bridge::VehicleLayout>,
+    /// The axles of `moving_forces` vehicles.
+    pub(crate) forces: Vec<crate::vehicle_bridge::MovingForce>,
+}
+
+/// The wheels, multibody vehicles and moving forces of `train` with its leading axle at
+/// `position` \[m\] (see [`train_wheels`]); an error for a train without wheels (moving forces
+/// only: nothing to couple).
 pub(crate) fn wheels_of(
     train: &crate::train::Train,
     position: f64,
-) -> Result<(Vec<WheelSpec>, Vec<crate::vehicle_bridge::VehicleLayout>), ConfigError> {
+) -> Result<TrainOnTrack, ConfigError> {
     use crate::train::VehicleSpec as V;
     let g = GRAVITY;
     let mut offset = 0.0;
     let mut wheels = Vec::new();
     let mut layouts = Vec::new();
+    let mut forces = Vec::new();
     for (i, v) in train.vehicles.iter().enumerate() {
         let single = |wheel_mass: f64, body_mass: f64, k: f64, c: f64| WheelSpec {
             position: position - offset,
@@ -140,15 +144,36 @@ pub(crate) fn wheels_of(
                 }
                 a.length
             }
-            other => bail!(
-                "train vehicle {i}: type = \"{}\" is not yet available in vehicle_bridge (the coupled model has quarter_car, sprung_mass, bogie_vehicle and articulated vehicles; use kind = \"moving_load\" or \"sweep\" for this train as moving forces)",
-                other.type_name()
-            ),
+            V::MovingForces(f) => {
+                for (&x, &load) in f.axle_positions.iter().zip(&f.axle_loads) {
+                    forces.push(crate::vehicle_bridge::MovingForce {
+                        position: position - offset - x,
+                        force: load,
+                    });
+                }
+                f.length
+            }
         };
         offset += length;
     }
+    if wheels.is_empty() {
+        bail!(
+            "the train \"{}\" is moving forces only (type = \"moving_forces\" or a standard load model such as HSLM-A): the coupled model needs at least one vehicle with wheels (quarter_car, sprung_mass, bogie_vehicle or articulated); run the axle loads as kind = \"moving_load\" (exact modal steps) or in a sweep with model = \"moving_forces\"",
+            train.name
+        );
+    }
     checks::count("the wheels of [train]", wheels.len(), 1, checks::MAX_WHEELS)?;
-    Ok((wheels, layouts))
+    checks::count(
+        "the moving-force axles of [train]",
+        forces.len(),
+        0,
+        checks::MAX_WHEELS,
+    )?;
+    Ok(TrainOnTrack {
+        wheels,
+        layouts,
+        forces,
+    })
 }
 
 /// The coupled model's requirements on an articulated train: positive masses, inertias and

@@ -297,14 +297,21 @@ fn vehicle_wheels(vehicle: &VehicleSpec) -> Result<Vec<WheelSpec>, ConfigError> 
 /// Validates a parsed scenario file.
 pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError> {
     // Sizes first, before the bridge's modes are computed.
-    let (wheels, speed, vehicles, train) = match (&file.vehicle, &file.train) {
-        (Some(vehicle), None) => (vehicle_wheels(vehicle)?, vehicle.speed, Vec::new(), None),
+    let (wheels, speed, vehicles, moving_forces, train) = match (&file.vehicle, &file.train) {
+        (Some(vehicle), None) => (
+            vehicle_wheels(vehicle)?,
+            vehicle.speed,
+            Vec::new(),
+            Vec::new(),
+            None,
+        ),
         (None, Some(table)) => {
-            let (wheels, speed, vehicles) = train_wheels(table)?;
+            let (on_track, speed) = train_wheels(table)?;
             (
-                wheels,
+                on_track.wheels,
                 speed,
-                vehicles,
+                on_track.layouts,
+                on_track.forces,
                 Some(super::train::build(table, "train")?),
             )
         }
@@ -377,6 +384,7 @@ pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError
         bridge: bridge.basis,
         damping: bridge.damping,
         wheels,
+        moving_forces,
         speed,
         contact,
         geometry,

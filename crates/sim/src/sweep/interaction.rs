@@ -26,6 +26,8 @@ pub struct TrainVehicles {
     pub wheels: Vec<WheelSpec>,
     /// The multibody vehicles on those wheels.
     pub layouts: Vec<VehicleLayout>,
+    /// The axles of the train's `moving_forces` vehicles (positions ≤ 0).
+    pub forces: Vec<crate::vehicle_bridge::MovingForce>,
     /// The time step of its passages \[s\] (resolves the contact modes: the coupled model's
     /// default, `config::vehicle_bridge::default_dt`, unless given).
     pub dt: f64,
@@ -93,6 +95,7 @@ pub fn history(
         .wheels
         .iter()
         .map(|w| w.position)
+        .chain(vehicles.forces.iter().map(|f| f.position))
         .fold(0.0f64, f64::min);
     let steps = ((model.basis.length() - last) / speed + free_vibration) / vehicles.dt;
     let every = ((steps / samples.max(1) as f64).ceil() as usize).max(1);
@@ -136,6 +139,7 @@ fn passage_with(
         bridge: Box::new(Arc::clone(&model.basis)),
         damping: model.damping.clone(),
         wheels: vehicles.wheels.clone(),
+        moving_forces: vehicles.forces.clone(),
         speed,
         contact: model.contact,
         geometry: model.geometry,

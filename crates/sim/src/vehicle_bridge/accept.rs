@@ -47,6 +47,16 @@ impl Simulation {
             }
             self.contact_load[self.wheel_dof[k]] = -w.outputs[k].force;
         }
+        if !self.scenario.moving_forces.is_empty() {
+            let t = match update {
+                StateUpdate::Finish { .. } => self.eq.t_new,
+                StateUpdate::Restart { t, .. } => t,
+            };
+            self.moving_force_load(t)?;
+            for (l, p) in self.contact_load.iter_mut().zip(&self.work.moving_load) {
+                *l += p;
+            }
+        }
         self.structure
             .contact_load
             .copy_from_slice(&self.contact_load);

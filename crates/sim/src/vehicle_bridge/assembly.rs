@@ -256,6 +256,17 @@ impl Simulation {
                 }
             }
         }
+        // The moving forces on the span at t = 0 (module `moving_forces`).
+        super::moving_forces::add_modal_load(
+            &scenario.moving_forces,
+            scenario.speed,
+            0.0,
+            &*scenario.bridge,
+            None,
+            1.0,
+            &mut vec![0.0; m],
+            &mut contact_load[..m],
+        )?;
         for v in &vehicles {
             static_vehicle(v, &stiffness, &gravity_load, &mut q0)?;
         }
@@ -312,6 +323,8 @@ impl Simulation {
                 .map(|&iw| (0..m).chain([iw]).collect())
                 .collect(),
             span_modes: vec![m; nw],
+            moving_load: vec![0.0; m],
+            force_shapes: vec![0.0; m],
             g_act: vec![vec![0.0; n]; nw],
             v_act: vec![vec![0.0; n]; nw],
             all_wheels: (0..nw).collect(),

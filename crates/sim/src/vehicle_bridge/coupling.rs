@@ -168,6 +168,14 @@ impl Simulation {
             self.work.f_ext[i] =
                 self.structure.gravity_load[i] + self.eq.alpha_f * self.contact_load[i];
         }
+        // The moving forces at t_{n+1} (their part at t_n is in `contact_load`).
+        if !self.scenario.moving_forces.is_empty() {
+            self.moving_force_load(self.eq.t_new).map_err(fatal)?;
+            let w = &mut self.work;
+            for (f, p) in w.f_ext.iter_mut().zip(&w.moving_load) {
+                *f += s * p;
+            }
+        }
         self.eq
             .effective_load_sparse(
                 self.structure.mass_sparse.as_ref(),

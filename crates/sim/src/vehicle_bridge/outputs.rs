@@ -56,12 +56,7 @@ impl Simulation {
     /// Total simulated time of a [`run`](Self::run) \[s\].
     pub fn end_time(&self) -> f64 {
         self.scenario.duration.unwrap_or_else(|| {
-            let first = self
-                .scenario
-                .wheels
-                .iter()
-                .map(|w| w.position)
-                .fold(f64::INFINITY, f64::min);
+            let first = super::scenario::first_position(&self.scenario);
             ((self.scenario.bridge.length() - first) / self.scenario.speed).max(0.0)
         })
     }
@@ -141,6 +136,16 @@ impl Simulation {
             }
             for j in 0..basis.n_modes() {
                 total += self.static_loads[k] * self.output_shapes[j] * basis.shape(j, x)?
+                    / (basis.modal_mass(j)? * omegas[j] * omegas[j]);
+            }
+        }
+        for f in &self.scenario.moving_forces {
+            let x = f.position + self.scenario.speed * self.t();
+            if !(0.0..=basis.length()).contains(&x) {
+                continue;
+            }
+            for j in 0..basis.n_modes() {
+                total += f.force * self.output_shapes[j] * basis.shape(j, x)?
                     / (basis.modal_mass(j)? * omegas[j] * omegas[j]);
             }
         }

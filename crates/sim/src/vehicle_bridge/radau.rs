@@ -93,6 +93,9 @@ impl OdeSystem for Coupled<'_> {
         let n = y.len() / 2;
         let (x, v) = y.split_at(n);
         self.contacts(t, x, false).map_err(CallbackError::new)?;
+        if !self.sim.scenario.moving_forces.is_empty() {
+            self.sim.moving_force_load(t).map_err(CallbackError::new)?;
+        }
         let sim = &*self.sim;
         let st = &sim.structure;
         let m = sim.scenario.bridge.n_modes();
@@ -109,6 +112,11 @@ impl OdeSystem for Coupled<'_> {
                 dydt[n + j] += sim.work.modal_load[k][j];
             }
             dydt[n + iw] -= sim.work.outputs[k].force;
+        }
+        if !sim.scenario.moving_forces.is_empty() {
+            for j in 0..m {
+                dydt[n + j] += sim.work.moving_load[j];
+            }
         }
         for i in 0..n {
             dydt[n + i] /= st.mass[(i, i)];

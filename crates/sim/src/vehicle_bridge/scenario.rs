@@ -137,6 +137,9 @@ pub struct Scenario {
     pub damping: ModalDamping,
     /// The wheels (at least one).
     pub wheels: Vec<WheelSpec>,
+    /// Forces moving with the wheels without DOFs or contact (module
+    /// [`moving_forces`](super::moving_forces); usually empty).
+    pub moving_forces: Vec<super::MovingForce>,
     /// Vehicle speed c \[m/s\] (> 0).
     pub speed: f64,
     /// Contact model.
@@ -242,13 +245,18 @@ pub(super) fn validate(scenario: &mut Scenario) -> Result<(), VehicleBridgeError
         return Err(invalid("duration", d, "must be positive"));
     }
     scenario.irregularity.validate()?;
+    for (p, f) in scenario.moving_forces.iter().enumerate() {
+        let key = |k: &str| format!("moving_forces[{p}].{k}");
+        if !f.position.is_finite() {
+            return Err(invalid(key("position"), f.position, "must be finite"));
+        }
+        if !f.force.is_finite() {
+            return Err(invalid(key("force"), f.force, "must be finite"));
+        }
+    }
     {
         // The step count is checked before anything is allocated or run.
-        let first = scenario
-            .wheels
-            .iter()
-            .map(|w| w.position)
-            .fold(f64::INFINITY, f64::min);
+        let first = first_position(scenario);
         let end = scenario
             .duration
             .unwrap_or(((length - first) / scenario.speed).max(0.0));
@@ -352,4 +360,15 @@ pub(super) fn validate(scenario: &mut Scenario) -> Result<(), VehicleBridgeError
         ));
     }
     Ok(())
+}
+
+/// The position of the rearmost wheel or moving force at t = 0 \[m\] (the run without a
+/// `duration` ends when it has left the span).
+pub(super) fn first_position(scenario: &Scenario) -> f64 {
+    scenario
+        .wheels
+        .iter()
+        .map(|w| w.position)
+        .chain(scenario.moving_forces.iter().map(|f| f.position))
+        .fold(f64::INFINITY, f64::min)
 }
