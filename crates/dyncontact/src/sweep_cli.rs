@@ -267,10 +267,9 @@ fn plot_sweep(
         .enumerate()
         .map(|(t, train)| plot::Series::new(train.name.clone(), along(&per_train_acc[t], 1.0)))
         .collect();
-    acc_series.push(plot::Series::new(
-        "envelope",
-        along(&s.envelope.max_acceleration, 1.0),
-    ));
+    acc_series.push(
+        plot::Series::new("envelope", along(&s.envelope.max_acceleration, 1.0)).in_every_part(),
+    );
     acc_series.push(plot::Series::reference(
         format!(
             "limit {} m/s² ({})",
@@ -302,10 +301,9 @@ fn plot_sweep(
         .enumerate()
         .map(|(t, train)| plot::Series::new(train.name.clone(), along(&per_train_defl[t], 1e3)))
         .collect();
-    defl_series.push(plot::Series::new(
-        "envelope",
-        along(&s.envelope.max_deflection, 1e3),
-    ));
+    defl_series.push(
+        plot::Series::new("envelope", along(&s.envelope.max_deflection, 1e3)).in_every_part(),
+    );
     plot::panels(
         &run_out.path("deflection.png"),
         &[

@@ -437,9 +437,27 @@ pub fn write_train_pictures(dir: &RunOutput, pictures: &[TrainPicture]) -> Resul
         .first()
         .map(|p| p.vehicles.iter().map(|v| v.1).collect())
         .unwrap_or_default();
+    // One abscissa for every picture: each track from the first picture's rear end (the
+    // train moves forward, so its last wheel is furthest back then) to the common far end;
+    // off the span the track is rigid (w = 0), so the extension is the level rail.
+    let x_from = pictures
+        .iter()
+        .filter_map(|p| p.track.first().map(|t| t.0))
+        .fold(f64::INFINITY, f64::min);
+    let x_to = pictures
+        .iter()
+        .filter_map(|p| p.track.last().map(|t| t.0))
+        .fold(f64::NEG_INFINITY, f64::max);
     let panels: Vec<Panel> = pictures
         .iter()
         .map(|p| {
+            let mut track: Vec<(f64, f64)> = p.track.iter().map(|&(x, w)| (x, -1e3 * w)).collect();
+            if track.first().is_some_and(|t| t.0 > x_from) {
+                track.insert(0, (x_from, 0.0));
+            }
+            if track.last().is_some_and(|t| t.0 < x_to) {
+                track.push((x_to, 0.0));
+            }
             // Boxes 3 … 8 mm above the level rail, moved by the body's displacement.
             let (box_lo, box_hi) = (3.0, 8.0);
             let mut wheels = Vec::new();
@@ -469,10 +487,7 @@ pub fn write_train_pictures(dir: &RunOutput, pictures: &[TrainPicture]) -> Resul
                 x_label: "x [m] (0 and L: the supports)".into(),
                 y_label: "deflection [mm] (vehicles schematic)".into(),
                 series: vec![
-                    Series::new(
-                        "track (deflection)",
-                        p.track.iter().map(|&(x, w)| (x, -1e3 * w)).collect(),
-                    ),
+                    Series::new("track (deflection)", track),
                     Series::new("wheelsets", wheels),
                     Series::new("car bodies (moving with the body)", bodies),
                 ],

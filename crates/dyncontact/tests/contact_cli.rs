@@ -148,8 +148,13 @@ fn invalid_cases_name_the_key() {
             &["[load]", "exactly one"],
         ),
         ("force = 1000.0", "force = -5.0", &["[load]", "force"]),
-        ("nx = 48", "nx = 0", &["[grid]", "nx"]),
-        ("dx = 1.8e-5", "dx = 0.0", &["[grid]", "dx"]),
+        ("nx = 48", "nx = 0", &["`grid.nx` = 0"]),
+        ("nx = 48", "nx = 70000", &["`grid.nx` = 70000", "65536"]),
+        (
+            "dx = 1.8e-5",
+            "dx = 0.0",
+            &["`grid.dx` = 0", "[1e-9, 10] m"],
+        ),
         ("ny = 48\n", "", &["[grid]", "ny"]),
         (
             "kind = \"quadratic\"",

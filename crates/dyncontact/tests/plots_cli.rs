@@ -40,6 +40,131 @@ fn rigid_contact_draws_no_empty_pressure_plot() {
     assert_eq!(check_plot_report(&report, &out, "biggs"), 3);
 }
 
+/// More series than line colours: a sweep of 13 trains (the ten HSLM-A, three trains given
+/// by their axles) draws `acceleration.png` and `deflection.png` as two parts each, every part
+/// with the envelope (and the limit line) and no two legend entries alike; a train of 16
+/// wheelsets splits its per-wheel panels the same way. The checker requires distinct legend
+/// entries and one x range per x label (so the parts share their axes).
+#[test]
+fn more_series_than_colours_are_split_into_parts() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(example("sweep_hslm.toml"))
+        .unwrap()
+        .replace(
+            "[speeds]",
+            "[[trains.train]]\nname = \"two axles\"\naxle_positions = [0.0, 3.0]\naxle_loads = [170e3, 170e3]\n\
+             [[trains.train]]\nname = \"three axles\"\naxle_positions = [0.0, 3.0, 6.0]\naxle_loads = [150e3, 150e3, 150e3]\n\
+             [[trains.train]]\nname = \"four axles\"\naxle_positions = [0.0, 2.5, 17.5, 20.0]\naxle_loads = [160e3, 160e3, 160e3, 160e3]\n\n[speeds]",
+        );
+    assert!(
+        text.contains("four axles"),
+        "the example has a [speeds] table"
+    );
+    let file = support::write(dir.path(), "sweep13.toml", &text);
+    let out = dir.path().join("out");
+    let report = run_reporting(
+        &["sweep", &file, "--out", out.to_str().unwrap()],
+        dir.path(),
+    );
+    check_plot_report(&report, &out, "13 trains");
+    let figures: Vec<serde_json::Value> = std::fs::read_to_string(&report)
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    let acc = figures
+        .iter()
+        .find(|f| f["file"] == "acceleration.png")
+        .unwrap();
+    let parts = acc["panels"].as_array().unwrap();
+    assert_eq!(parts.len(), 2, "{acc}");
+    let mut trains = 0;
+    for p in parts {
+        let labels: Vec<&str> = p["series"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|s| s["label"].as_str().unwrap())
+            .collect();
+        assert!(labels.len() <= 12, "{labels:?}");
+        assert!(labels.contains(&"envelope"), "{labels:?}");
+        assert!(labels.iter().any(|l| l.starts_with("limit")), "{labels:?}");
+        trains += labels.len() - 2;
+    }
+    assert_eq!(trains, 13);
+    let defl = figures
+        .iter()
+        .find(|f| f["file"] == "deflection.png")
+        .unwrap();
+    assert_eq!(
+        defl["panels"].as_array().unwrap().len(),
+        3,
+        "two parts and φ'"
+    );
+
+    // 16 wheelsets: four Manchester cars, rigid contact, a short run.
+    let text = std::fs::read_to_string(example("train_bridge.toml"))
+        .unwrap()
+        .replace("count = 2", "count = 4")
+        .replace("model = \"hertz\"", "model = \"rigid\"")
+        .replace("dt = 1e-4", "dt = 5e-4");
+    let file = support::write(dir.path(), "train16.toml", &text);
+    let out = dir.path().join("out16");
+    let report = dir.path().join("plots16.jsonl");
+    let o = dyncontact_env(
+        &["run", &file, "--out", out.to_str().unwrap()],
+        &[(PLOT_REPORT_ENV, report.as_os_str())],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    check_plot_report(&report, &out, "16 wheelsets");
+    let text = std::fs::read_to_string(&report).unwrap();
+    let force: serde_json::Value = text
+        .lines()
+        .map(|l| serde_json::from_str::<serde_json::Value>(l).unwrap())
+        .find(|f| f["file"] == "contact_force.png")
+        .unwrap();
+    assert_eq!(
+        force["panels"].as_array().unwrap().len(),
+        2,
+        "16 wheels + load line in two parts"
+    );
+}
+
+/// `train.png`: the pictures of the train at several instants share one x range.
+#[test]
+fn train_pictures_share_one_abscissa() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let report = run_reporting(
+        &[
+            "run",
+            example("train_bridge.toml").to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        dir.path(),
+    );
+    check_plot_report(&report, &out, "train");
+    let text = std::fs::read_to_string(&report).unwrap();
+    let train: serde_json::Value = text
+        .lines()
+        .map(|l| serde_json::from_str::<serde_json::Value>(l).unwrap())
+        .find(|f| f["file"] == "train.png")
+        .unwrap();
+    let panels = train["panels"].as_array().unwrap();
+    assert_eq!(panels.len(), 4);
+    assert!(
+        panels.iter().all(|p| p["x_range"] == panels[0]["x_range"]),
+        "{train}"
+    );
+    // The track is drawn over the whole common range in every picture.
+    for p in panels {
+        let track = &p["series"][0];
+        assert_eq!(track["label"], "track (deflection)");
+        assert_eq!(track["points_outside"], 0);
+    }
+}
+
 /// Creep curves through zero creepage, with the range written without `=` (it starts with a
 /// minus sign), on the 2-D Carter case and on the 3-D rolling case: every point converges
 /// (ξ = 0 is the traction-free solution, all loaded elements in adhesion), and the plots,
@@ -163,6 +288,10 @@ fn the_plot_checker_rejects_each_defect() {
     for (k, bad) in defects.into_iter().enumerate() {
         assert!(!check(figure(vec![bad], vec![])), "panel defect {k} passed");
     }
+    // Two panels with one x label but different x ranges (no common abscissa).
+    let mut shifted = good_panel.clone();
+    shifted["x_range"] = serde_json::json!([0.0, 2.0]);
+    assert!(!check(figure(vec![good_panel.clone(), shifted], vec![])));
     assert!(!check(figure(
         vec![],
         vec![map([100.0, 50.0], serde_json::json!([["adhesion", 4]]))]

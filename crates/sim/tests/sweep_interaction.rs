@@ -4,19 +4,15 @@
 //! passage (φ' → 1), the same passage run directly as a `vehicle_bridge` scenario, and the
 //! refusal of trains that have no vehicle model (HSLM-A: point forces).
 
-use std::path::Path;
+mod support;
 
+use sim::config::ScenarioConfig;
 use sim::config::sweep::SweepConfig;
-use sim::config::{self, LoadOptions, ScenarioConfig};
-use sim::sweep::{Shard, run};
+use support::{load, midspan_influence, passages};
 
 const L: f64 = 20.0;
 const EI: f64 = 1.95e10;
 const BRIDGE: &str = "[bridge]\nlength = 20.0\nEI = 1.95e10\nmass_per_length = 12000.0\nsupports = \"simply_supported\"\nmodes = 3\ndamping_ratio = 0.01\n";
-
-fn load(text: &str) -> Result<ScenarioConfig, String> {
-    config::load(text, Path::new("."), &LoadOptions::default()).map_err(|e| e.to_string())
-}
 
 fn sweep(trains: &str, speeds: &str, extra: &str) -> SweepConfig {
     match load(&format!(
@@ -26,26 +22,6 @@ fn sweep(trains: &str, speeds: &str, extra: &str) -> SweepConfig {
         Ok(_) => panic!("not a sweep"),
         Err(e) => panic!("{e}"),
     }
-}
-
-fn passages(c: &SweepConfig) -> Vec<sim::sweep::Passage> {
-    run(
-        c.bridge.basis.as_ref(),
-        &c.bridge.damping,
-        &c.spec,
-        Shard::ALL,
-        &|| true,
-    )
-    .unwrap()
-}
-
-/// Midspan deflection of the simply supported span under P at a (closed form).
-fn midspan_influence(a: f64, p: f64) -> f64 {
-    if !(0.0..=L).contains(&a) {
-        return 0.0;
-    }
-    let a = a.min(L - a);
-    p * a * (3.0 * L * L - 4.0 * a * a) / (48.0 * EI)
 }
 
 #[test]
@@ -67,7 +43,7 @@ fn a_slow_passage_deflects_the_span_like_the_static_influence_line() {
         let lead = (L + 20.0) * i as f64 / 20_000.0;
         let w: f64 = axles
             .iter()
-            .map(|a| midspan_influence(lead - a.offset, a.load))
+            .map(|a| midspan_influence(L, EI, lead - a.offset, a.load))
             .sum();
         peak = peak.max(w);
     }

@@ -2,38 +2,18 @@
 //! v_i = n₀ D / i (EN 1991-2 §6.4.4), φ' → 1 as the speed tends to 0, the Eurocode mode rule,
 //! and results independent of the thread count and of sharding.
 
-use std::path::Path;
+mod support;
 
-use sim::config::sweep::SweepConfig;
-use sim::config::{self, LoadOptions, ScenarioConfig};
 use sim::sweep::eurocode::Track;
 use sim::sweep::summary::summarise;
 use sim::sweep::{Shard, run};
-
-fn load(text: &str) -> SweepConfig {
-    match config::load(text, Path::new("."), &LoadOptions::default()) {
-        Ok(ScenarioConfig::Sweep(c)) => *c,
-        Ok(_) => panic!("not a sweep"),
-        Err(e) => panic!("{e}"),
-    }
-}
+use support::{passages, sweep_config as load};
 
 /// A 20 m simply supported span with f1 = 5 Hz, 3 modes, ζ = 1 %.
 fn sweep(trains: &str, speeds: &str) -> String {
     format!(
         "kind = \"sweep\"\n[bridge]\nlength = 20.0\nEI = 1.9452e10\nmass_per_length = 12000.0\nsupports = \"simply_supported\"\nmodes = 3\ndamping_ratio = 0.01\n[trains]\nnames = [{trains}]\n[speeds]\n{speeds}\n"
     )
-}
-
-fn passages(c: &SweepConfig) -> Vec<sim::sweep::Passage> {
-    run(
-        c.bridge.basis.as_ref(),
-        &c.bridge.damping,
-        &c.spec,
-        Shard::ALL,
-        &|| true,
-    )
-    .unwrap()
 }
 
 #[test]

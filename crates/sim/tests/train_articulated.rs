@@ -3,10 +3,12 @@
 //! halves), the bogie vehicle (an articulated train of one body is one; its frequencies have a
 //! closed form), and the static influence line of a simply supported beam for a crawling train.
 
+mod support;
+
 use std::path::Path;
 
-use sim::config::{self, LoadOptions, ScenarioConfig};
-use sim::vehicle_bridge::Simulation;
+use sim::config::{self, LoadOptions};
+use support::{midspan_influence, simulation};
 
 const L: f64 = 25.0;
 const EI: f64 = 8.323e9;
@@ -23,17 +25,6 @@ fn articulated(bodies: usize, speed: f64, position: f64) -> String {
     format!(
         "[train]\nspeed = {speed}\nposition = {position}\n[[train.vehicles]]\ntype = \"articulated\"\nbodies = {bodies}\nlength = {length}\n{CAR}"
     )
-}
-
-fn simulation(text: &str) -> Simulation {
-    match config::load(text, Path::new("."), &LoadOptions::default())
-        .unwrap_or_else(|e| panic!("{e}"))
-    {
-        ScenarioConfig::VehicleBridge(v) => {
-            Simulation::with_vehicles(v.scenario, v.vehicles).unwrap()
-        }
-        _ => panic!("not vehicle_bridge"),
-    }
 }
 
 /// Static axle loads of the 3-body chain: end bogies carry half a body, inner bogies a whole
@@ -114,13 +105,7 @@ fn a_crawling_chain_deflects_the_bridge_like_its_static_influence_line() {
     ));
     let loads = axle_loads_3();
     let offsets = [0.0, 3.0, 18.7, 21.7, 37.4, 40.4, 56.1, 59.1];
-    let influence = |a: f64, p: f64| {
-        if !(0.0..=L).contains(&a) {
-            return 0.0;
-        }
-        let a = a.min(L - a);
-        p * a * (3.0 * L * L - 4.0 * a * a) / (48.0 * EI)
-    };
+    let influence = |a: f64, p: f64| midspan_influence(L, EI, a, p);
     let weight: f64 = loads.iter().sum();
     let (mut peak_dynamic, mut peak_static) = (0.0f64, 0.0f64);
     let (mut total_sum, mut samples) = (0.0f64, 0usize);

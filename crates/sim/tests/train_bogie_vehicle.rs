@@ -3,10 +3,13 @@
 //! influence line of a simply supported beam for a crawling train, and convergence in Δt over a
 //! rail dip with loss of contact.
 
+mod support;
+
 use std::path::Path;
 
 use sim::config::{self, LoadOptions, ScenarioConfig};
 use sim::vehicle_bridge::{RunSummary, Simulation};
+use support::{midspan_influence, simulation};
 
 const L: f64 = 25.0;
 const EI: f64 = 8.323e9;
@@ -21,26 +24,6 @@ fn train(speed: f64, position: f64) -> String {
 
 /// Static wheelset load (32,000/4 + 2,615/2 + 1,813) × 9.81 = 109.09 kN.
 const P: f64 = (32_000.0 / 4.0 + 2615.0 / 2.0 + 1813.0) * 9.81;
-
-fn simulation(text: &str) -> Simulation {
-    match config::load(text, Path::new("."), &LoadOptions::default())
-        .unwrap_or_else(|e| panic!("{e}"))
-    {
-        ScenarioConfig::VehicleBridge(v) => {
-            Simulation::with_vehicles(v.scenario, v.vehicles).unwrap()
-        }
-        _ => panic!("not vehicle_bridge"),
-    }
-}
-
-/// Midspan deflection of a simply supported beam under P at a (closed form, Maxwell–Betti).
-fn midspan_influence(a: f64) -> f64 {
-    if !(0.0..=L).contains(&a) {
-        return 0.0;
-    }
-    let a = a.min(L - a);
-    P * a * (3.0 * L * L - 4.0 * a * a) / (48.0 * EI)
-}
 
 #[test]
 fn the_static_start_carries_each_wheelset_load() {
@@ -95,7 +78,10 @@ fn a_crawling_train_deflects_the_bridge_like_its_static_influence_line() {
     let summary: RunSummary = sim
         .run(|s| {
             let lead = -1.0 + speed * s.t();
-            let w_static: f64 = offsets.iter().map(|d| midspan_influence(lead - d)).sum();
+            let w_static: f64 = offsets
+                .iter()
+                .map(|d| midspan_influence(L, EI, lead - d, P))
+                .sum();
             let w = s.output_point_response().0;
             peak_dynamic = peak_dynamic.max(w.abs());
             peak_static = peak_static.max(w_static);

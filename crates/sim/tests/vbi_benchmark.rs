@@ -11,14 +11,12 @@
 //! scatter of the interaction results behind eq. 6.13 is not available (references.md §T6).
 //! Measured numbers in docs/trains.md "Published benchmark".
 
-use std::f64::consts::PI;
-use std::path::Path;
+mod support;
 
-use sim::config::sweep::SweepConfig;
-use sim::config::{self, LoadOptions, ScenarioConfig};
+use std::f64::consts::PI;
+
 use sim::sweep::eurocode::{BridgeType, additional_damping};
-use sim::sweep::{Shard, run};
-use sim::vehicle_bridge::Simulation;
+use support::{passages, simulation, sweep_config};
 
 /// Time step of the coupled runs \[s\] (convergence: the last test).
 const DT: f64 = 2.5e-4;
@@ -63,22 +61,10 @@ fn moving_forces(span: Span, zeta: f64, train: &str, speeds: &[f64]) -> Vec<(f64
         list.join(", "),
         0.5 * span.length
     );
-    let c: SweepConfig = match config::load(&text, Path::new("."), &LoadOptions::default()) {
-        Ok(ScenarioConfig::Sweep(c)) => *c,
-        Ok(_) => panic!("not a sweep"),
-        Err(e) => panic!("{e}"),
-    };
-    run(
-        c.bridge.basis.as_ref(),
-        &c.bridge.damping,
-        &c.spec,
-        Shard::ALL,
-        &|| true,
-    )
-    .unwrap()
-    .iter()
-    .map(|q| (q.peaks.deflection[0], q.peaks.acceleration[0]))
-    .collect()
+    passages(&sweep_config(&text))
+        .iter()
+        .map(|q| (q.peaks.deflection[0], q.peaks.acceleration[0]))
+        .collect()
 }
 
 /// The coupled run (rigid contact, generalized-α): peak |midspan deflection| and
@@ -88,14 +74,7 @@ fn coupled(span: Span, train: &str, speed: f64, dt: f64) -> (f64, f64, f64) {
         "kind = \"vehicle_bridge\"\n{}[train]\nspeed = {speed}\nposition = -1.0\n[[train.vehicles]]\npreset = \"{train}\"\n[contact]\nmodel = \"rigid\"\n[integrator]\nmethod = \"generalized_alpha\"\ndt = {dt}\n",
         span.toml(span.zeta())
     );
-    let mut sim = match config::load(&text, Path::new("."), &LoadOptions::default())
-        .unwrap_or_else(|e| panic!("{e}"))
-    {
-        ScenarioConfig::VehicleBridge(v) => {
-            Simulation::with_vehicles(v.scenario, v.vehicles).unwrap()
-        }
-        _ => panic!("not vehicle_bridge"),
-    };
+    let mut sim = simulation(&text);
     let vehicles = sim.multibody_vehicle_count();
     let length = span.length;
     let mut body = 0.0f64;

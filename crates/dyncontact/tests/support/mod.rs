@@ -64,9 +64,10 @@ pub fn dyncontact_env(args: &[&str], env: &[(&str, &std::ffi::OsStr)]) -> Output
 pub const PLOT_REPORT_ENV: &str = "DYNCONTACT_PLOT_REPORT";
 
 /// Checks the figure reports the binary wrote to `report` (one JSON object per line, see
-/// `src/plot.rs`) for figures in `out`: every figure file exists and names its scenario;
+/// `src/plot/report.rs`) for figures in `out`: every figure file exists and names its scenario;
 /// every panel has axis labels with units and drawn data; every data point lies inside the
-/// axes; every legend entry has a drawn line of its own colour and width; a panel of several series has a legend entry for
+/// axes; panels of a figure with the same x label have the same x range (one abscissa);
+/// every legend entry has a drawn line of its own colour and width; a panel of several series has a legend entry for
 /// each drawn series, with a label longer than one letter, and names every
 /// series it could not draw in its note; maps keep equal scales in x and y, contain their grid,
 /// and have a colour bar or a categorical legend covering every cell. Returns the number of
@@ -87,7 +88,22 @@ pub fn check_plot_report(report: &Path, out: &Path, context: &str) -> usize {
         if fig["scenario"].as_str().unwrap_or("").is_empty() {
             bad("no scenario name".into());
         }
-        for p in fig["panels"].as_array().unwrap() {
+        // One abscissa across a figure: panels with the same x label share one x range.
+        let panels = fig["panels"].as_array().unwrap();
+        for (i, p) in panels.iter().enumerate() {
+            if let Some(q) = panels[..i].iter().find(|q| {
+                q["x_label"] == p["x_label"]
+                    && q["skipped"].is_null()
+                    && p["skipped"].is_null()
+                    && q["x_range"] != p["x_range"]
+            }) {
+                bad(format!(
+                    "panels \"{}\" and \"{}\" share the x label {} but not the x range ({} and {})",
+                    q["title"], p["title"], p["x_label"], q["x_range"], p["x_range"]
+                ));
+            }
+        }
+        for p in panels {
             let title = p["title"].as_str().unwrap();
             if let Some(why) = p["skipped"].as_str() {
                 bad(format!("panel \"{title}\" skipped: {why}"));

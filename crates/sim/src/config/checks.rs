@@ -137,7 +137,11 @@ pub mod ranges {
     /// A radius of curvature of a contact body (wheel, rail head, ball, gap radii).
     pub const RADIUS: Range = Range::closed(1e-9, 1e6, "m");
     /// A boundary-element size.
-    pub const ELEMENT_SIZE: Range = Range::closed(1e-12, 10.0, "m");
+    pub const ELEMENT_SIZE: Range = Range::closed(
+        halfspace::grid::ELEMENT_SIZE_RANGE.0,
+        halfspace::grid::ELEMENT_SIZE_RANGE.1,
+        "m",
+    );
     /// A grid origin.
     pub const ORIGIN: Range = Range::symmetric(1e3, "m");
     /// A gap curvature coefficient A, B (gap = A x² + B y²).
@@ -145,7 +149,11 @@ pub mod ranges {
     /// Young's modulus of a contact body or a beam.
     pub const MODULUS: Range = Range::closed(1.0, 1e13, "Pa");
     /// Bending stiffness EI.
-    pub const BENDING_STIFFNESS: Range = Range::closed(1e-6, 1e16, "N m²");
+    pub const BENDING_STIFFNESS: Range = Range::closed(
+        beam::error::BENDING_STIFFNESS_RANGE.0,
+        beam::error::BENDING_STIFFNESS_RANGE.1,
+        "N m²",
+    );
     /// Second moment of area I.
     pub const SECOND_MOMENT: Range = Range::closed(1e-24, 1e4, "m⁴");
     /// Mass per unit length ρA.
@@ -293,7 +301,7 @@ mod tests {
             .check("bridge.EI", 1e-300)
             .unwrap_err()
             .to_string();
-        assert_eq!(e, "`bridge.EI` = 1e-300: must lie in [1e-6, 1e16] N m²");
+        assert_eq!(e, "`bridge.EI` = 1e-300: must lie in [1e-6, 1e14] N m²");
         let e = ranges::SPEED.check("vehicle.speed", f64::NAN).unwrap_err();
         assert!(e.to_string().contains("finite"), "{e}");
         assert_eq!(ranges::SPEED.check("v", 30.0).unwrap(), 30.0);

@@ -599,12 +599,15 @@ fn explicit_grid(spec: &GridSpec) -> Result<Option<Grid>, ConfigError> {
     let dy = spec.dy.ok_or_else(|| invalid!("[grid]: missing `dy`"))?;
     let x0 = spec.x0.unwrap_or(-0.5 * nx as f64 * dx);
     let y0 = spec.y0.unwrap_or(-0.5 * ny as f64 * dy);
-    let grid = Grid::new(nx, ny, dx, dy, x0, y0).map_err(|e| invalid!("[grid] {e}"))?;
+    // The scenario's own checks first: they name the keys as written in the file.
+    checks::count("grid.nx", nx, 1, checks::MAX_GRID_SIDE)?;
+    checks::count("grid.ny", ny, 1, checks::MAX_GRID_SIDE)?;
     checks::grid("grid.nx × grid.ny", nx, ny)?;
     ranges::ELEMENT_SIZE.check("grid.dx", dx)?;
     ranges::ELEMENT_SIZE.check("grid.dy", dy)?;
     ranges::ORIGIN.check_opt("grid.x0", spec.x0)?;
     ranges::ORIGIN.check_opt("grid.y0", spec.y0)?;
+    let grid = Grid::new(nx, ny, dx, dy, x0, y0).map_err(|e| invalid!("[grid] {e}"))?;
     Ok(Some(grid))
 }
 

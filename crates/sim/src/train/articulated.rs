@@ -107,24 +107,7 @@ impl Articulated {
 mod tests {
     use super::*;
     use crate::train::BogieVehicle;
-
-    fn chain(bodies: usize) -> Articulated {
-        Articulated {
-            length: bodies as f64 * 18.7 + 3.0,
-            bodies,
-            body_mass: 28_000.0,
-            body_pitch_inertia: 1.5e6,
-            bogie_spacing: 18.7,
-            bogie_mass: 3000.0,
-            bogie_pitch_inertia: 2000.0,
-            wheelbase: 3.0,
-            wheelset_mass: 2000.0,
-            primary_stiffness: 2.4e6,
-            primary_damping: 2e4,
-            secondary_stiffness: 8e5,
-            secondary_damping: 3e4,
-        }
-    }
+    use crate::train::fixtures::chain;
 
     /// One body on two bogies is the bogie vehicle: the same matrices entry by entry, hence
     /// the closed-form frequencies of `bogie_vehicle` (body bounce, pitch, bogie modes).

@@ -133,23 +133,7 @@ mod tests {
     use super::*;
     use faer::{Mat, Side};
 
-    /// The Manchester benchmark car (references.md §T4), 25 m long.
-    fn manchester() -> BogieVehicle {
-        BogieVehicle {
-            length: 25.0,
-            body_mass: 32_000.0,
-            body_pitch_inertia: 1.97e6,
-            bogie_spacing: 19.0,
-            bogie_mass: 2615.0,
-            bogie_pitch_inertia: 1476.0,
-            wheelbase: 2.56,
-            wheelset_mass: 1813.0,
-            primary_stiffness: 2.4e6,
-            primary_damping: 8e3,
-            secondary_stiffness: 8.6e5,
-            secondary_damping: 4e4,
-        }
-    }
+    use crate::train::fixtures::manchester;
 
     /// Frequencies \[Hz\] of the assembled 6 body-and-bogie DOFs with the wheelsets fixed:
     /// eigenvalues of M^{-1/2} K M^{-1/2} (faer's symmetric eigen-solver).

@@ -19,6 +19,9 @@ pub mod multibody;
 pub mod presets;
 pub mod vehicle;
 
+#[cfg(test)]
+pub(crate) mod fixtures;
+
 pub use vehicle::{Articulated, BogieVehicle, MovingForces, QuarterCar, SprungMass, VehicleSpec};
 
 /// A train: a name and its vehicles in running order (`count` already expanded).
@@ -253,24 +256,7 @@ fn validate(i: usize, v: &VehicleSpec) -> Result<(), TrainError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn manchester() -> BogieVehicle {
-        // The "Manchester benchmark" car (references.md §T4).
-        BogieVehicle {
-            length: 24.0,
-            body_mass: 32_000.0,
-            body_pitch_inertia: 1.97e6,
-            bogie_spacing: 19.0,
-            bogie_mass: 2615.0,
-            bogie_pitch_inertia: 1476.0,
-            wheelbase: 2.56,
-            wheelset_mass: 1813.0,
-            primary_stiffness: 2.4e6,
-            primary_damping: 8e3,
-            secondary_stiffness: 8.6e5,
-            secondary_damping: 4e4,
-        }
-    }
+    use crate::train::fixtures::{chain, manchester};
 
     #[test]
     fn bogie_vehicle_statics_give_the_published_wheelset_load() {
@@ -286,7 +272,8 @@ mod tests {
         }
         let offsets: Vec<f64> = axles.iter().map(|a| a.offset).collect();
         assert_eq!(offsets[..4], [0.0, 2.56, 19.0, 21.56]);
-        assert!((offsets[4] - 24.0).abs() < 1e-12 && (t.length() - 45.56).abs() < 1e-12);
+        // The preset car is 25 m from its leading axle to the next car's.
+        assert!((offsets[4] - 25.0).abs() < 1e-12 && (t.length() - 46.56).abs() < 1e-12);
         assert!((t.mass() - 2.0 * 44_482.0).abs() < 1e-9);
         let total: f64 = axles.iter().map(|a| a.load).sum();
         assert!((total - t.mass() * 9.81).abs() < 1e-6 * total);
@@ -294,21 +281,7 @@ mod tests {
 
     #[test]
     fn articulated_statics_balance_the_weight() {
-        let a = Articulated {
-            length: 3.0 * 18.7 + 3.0,
-            bodies: 3,
-            body_mass: 28_000.0,
-            body_pitch_inertia: 1.5e6,
-            bogie_spacing: 18.7,
-            bogie_mass: 3000.0,
-            bogie_pitch_inertia: 2000.0,
-            wheelbase: 3.0,
-            wheelset_mass: 2000.0,
-            primary_stiffness: 2.4e6,
-            primary_damping: 2e4,
-            secondary_stiffness: 8e5,
-            secondary_damping: 3e4,
-        };
+        let a = chain(3);
         let t = Train {
             name: "articulated".into(),
             vehicles: vec![VehicleSpec::Articulated(a)],

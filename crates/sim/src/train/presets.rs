@@ -60,7 +60,7 @@ pub fn any_by_name(name: &str) -> Option<Train> {
 /// The Manchester benchmark car (Iwnicki 1998, §T4): 3-D per-side suspension values doubled
 /// for the 2-D model; 25 m from leading axle to the next car's leading axle (19 m bogie
 /// centres plus 3.0 m from each outer bogie centre to the car end: TTB-2D's geometry, assumed).
-fn manchester() -> BogieVehicle {
+pub(crate) fn manchester() -> BogieVehicle {
     BogieVehicle {
         length: 25.0,
         body_mass: 32_000.0,

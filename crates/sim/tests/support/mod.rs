@@ -1,0 +1,59 @@
+//! Test fixtures shared by the `sim` integration tests (`mod support;` in each test file):
+//! reading scenario texts, running a sweep's passages, building a vehicle–bridge simulation
+//! with its vehicles, and the closed-form static influence line of a simply supported span.
+// Each test crate uses a subset of these helpers.
+#![allow(dead_code)]
+
+use std::path::Path;
+
+use sim::config::sweep::SweepConfig;
+use sim::config::{self, LoadOptions, ScenarioConfig};
+use sim::sweep::{Passage, Shard, run};
+use sim::vehicle_bridge::Simulation;
+
+/// A scenario text read with the default options (relative paths from `.`).
+pub fn load(text: &str) -> Result<ScenarioConfig, String> {
+    config::load(text, Path::new("."), &LoadOptions::default()).map_err(|e| e.to_string())
+}
+
+/// A `kind = "sweep"` text read as its configuration (panics on an error or another kind).
+pub fn sweep_config(text: &str) -> SweepConfig {
+    match load(text) {
+        Ok(ScenarioConfig::Sweep(c)) => *c,
+        Ok(_) => panic!("not a sweep"),
+        Err(e) => panic!("{e}"),
+    }
+}
+
+/// Every passage of a sweep, in one shard, never interrupted.
+pub fn passages(c: &SweepConfig) -> Vec<Passage> {
+    run(
+        c.bridge.basis.as_ref(),
+        &c.bridge.damping,
+        &c.spec,
+        Shard::ALL,
+        &|| true,
+    )
+    .unwrap()
+}
+
+/// A `kind = "vehicle_bridge"` text as a simulation with its vehicles (panics on an error).
+pub fn simulation(text: &str) -> Simulation {
+    match load(text).unwrap_or_else(|e| panic!("{e}")) {
+        ScenarioConfig::VehicleBridge(v) => {
+            Simulation::with_vehicles(v.scenario, v.vehicles).unwrap()
+        }
+        _ => panic!("not vehicle_bridge"),
+    }
+}
+
+/// Midspan deflection of a simply supported span (length `l`, bending stiffness `ei`) under
+/// a force `p` at `a` (closed form, Maxwell–Betti: P a (3L² − 4a²)/(48 EI) for a ≤ L/2;
+/// references.md §D1.1); 0 off the span.
+pub fn midspan_influence(l: f64, ei: f64, a: f64, p: f64) -> f64 {
+    if !(0.0..=l).contains(&a) {
+        return 0.0;
+    }
+    let a = a.min(l - a);
+    p * a * (3.0 * l * l - 4.0 * a * a) / (48.0 * ei)
+}
