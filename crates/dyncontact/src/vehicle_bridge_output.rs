@@ -384,6 +384,8 @@ pub struct TrainPicture {
     /// Per vehicle: (x of each wheel \[m\], the wheel's track deflection \[m\]) and the car
     /// body's displacement from its start \[m\].
     vehicles: Vec<(Vec<(f64, f64)>, f64)>,
+    /// The moving forces (axles without a vehicle model): (x, w(x)) \[m\].
+    forces: Vec<(f64, f64)>,
 }
 
 impl TrainPicture {
@@ -397,11 +399,19 @@ impl TrainPicture {
                 0.0
             }
         };
-        // From behind the last wheel to 5 m past the span.
+        // From behind the last wheel or force to 5 m past the span (or past the first force).
+        let scenario = sim.scenario();
+        let force_at: Vec<f64> = scenario
+            .moving_forces
+            .iter()
+            .map(|f| f.position + scenario.speed * sim.t())
+            .collect();
         let last = (0..sim.wheels().len())
             .map(|k| sim.wheel_position(k))
+            .chain(force_at.iter().copied())
             .fold(0.0f64, f64::min);
-        let (x0, x1) = (last.min(0.0) - 3.0, length + 5.0);
+        let first = force_at.iter().copied().fold(length, f64::max);
+        let (x0, x1) = (last.min(0.0) - 3.0, first + 5.0);
         let track = (0..=200)
             .map(|i| {
                 let x = x0 + (x1 - x0) * i as f64 / 200.0;
@@ -422,10 +432,12 @@ impl TrainPicture {
                 (at, wheels[g.start].body_displacement)
             })
             .collect();
+        let forces = force_at.iter().map(|&x| (x, deflection(x))).collect();
         Self {
             t: sim.t(),
             track,
             vehicles,
+            forces,
         }
     }
 }
@@ -482,15 +494,33 @@ pub fn write_train_pictures(dir: &RunOutput, pictures: &[TrainPicture]) -> Resul
                     (f64::NAN, f64::NAN),
                 ]);
             }
+            // Moving forces as arrows pointing down onto the rail.
+            let mut forces = Vec::new();
+            for &(x, w) in &p.forces {
+                let y = -1e3 * w;
+                forces.extend([
+                    (x, y + 8.0),
+                    (x, y),
+                    (f64::NAN, f64::NAN),
+                    (x - 0.4, y + 1.5),
+                    (x, y),
+                    (x + 0.4, y + 1.5),
+                    (f64::NAN, f64::NAN),
+                ]);
+            }
+            let mut series = vec![
+                Series::new("track (deflection)", track),
+                Series::new("wheelsets", wheels),
+                Series::new("car bodies (moving with the body)", bodies),
+            ];
+            if !forces.is_empty() {
+                series.push(Series::new("moving forces (axle loads)", forces));
+            }
             Panel {
                 title: format!("train on the bridge at t = {:.3} s", p.t),
                 x_label: "x [m] (0 and L: the supports)".into(),
                 y_label: "deflection [mm] (vehicles schematic)".into(),
-                series: vec![
-                    Series::new("track (deflection)", track),
-                    Series::new("wheelsets", wheels),
-                    Series::new("car bodies (moving with the body)", bodies),
-                ],
+                series,
             }
         })
         .collect();

@@ -200,7 +200,7 @@ fn every_example_has_a_golden_test() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .filter(|n| n.ends_with(".toml"))
         .collect();
-    assert_eq!(files.len(), 21, "{files:?}");
+    assert_eq!(files.len(), 22, "{files:?}");
     let missing: Vec<&String> = files
         .iter()
         .filter(|f| !this.contains(&format!("\"{f}\"")))
@@ -717,6 +717,62 @@ fn train_example_matches_the_docs() {
         .as_str()
         .map(|l| assert_eq!(l, "very good", "comfort level"))
         .expect("a comfort level");
+}
+
+/// docs/trains.md: a locomotive as moving forces ahead of two bogie vehicles; its
+/// quasi-static peak against the closed-form influence line of the 12 static axle loads
+/// (8 modes: within 2e-4).
+#[test]
+fn mixed_train_example_matches_the_docs() {
+    let summary = check(
+        "train_mixed.toml",
+        &["run"],
+        &[
+            n("train/axles", 12.0),
+            q("train/length", 68.71, 0.01),
+            q("train/mass", 151_676.0, 1.0),
+            q("max_midspan_deflection", 19.138e-3, 0.001e-3),
+            q("max_quasi_static_deflection", 17.604e-3, 0.001e-3),
+            q("dynamic_amplification", 1.0871, 0.0001),
+            q("max_midspan_acceleration", 10.454, 0.001),
+            q("contact/min_force", 3.2e3, 0.1e3),
+            q("contact/max_force", 252.7e3, 0.1e3),
+            n("contact/loss_of_contact_events", 0.0),
+            q("vehicles/0/max_body_acceleration", 0.490, 0.001),
+            q("vehicles/1/max_body_acceleration", 0.463, 0.001),
+            n("solver/steps", 23678.0),
+        ],
+        "docs/trains.md",
+    );
+    let car = (32000.0 / 4.0 + 2615.0 / 2.0 + 1813.0) * 9.81;
+    let mut axles: Vec<(f64, f64)> = [0.0, 3.0, 14.0, 17.0]
+        .iter()
+        .map(|&x| (x, 153.8e3))
+        .collect();
+    for lead in [22.15, 47.15] {
+        axles.extend([0.0, 2.56, 19.0, 21.56].iter().map(|x| (lead + x, car)));
+    }
+    let (l, ei) = (25.0_f64, 8.323e9);
+    let closed = (0..=100_000)
+        .map(|i| {
+            let lead = i as f64 * 1e-3;
+            axles
+                .iter()
+                .map(|&(offset, load)| {
+                    let b = lead - offset;
+                    if (0.0..=l).contains(&b) {
+                        let b = b.min(l - b);
+                        load * b * (3.0 * l * l - 4.0 * b * b) / (48.0 * ei)
+                    } else {
+                        0.0
+                    }
+                })
+                .sum::<f64>()
+        })
+        .fold(0.0f64, f64::max);
+    near("closed-form quasi-static peak", closed, 17.604e-3, 0.001e-3);
+    let modal = summary["max_quasi_static_deflection"].as_f64().unwrap();
+    assert!((modal / closed - 1.0).abs() < 2e-4, "{modal} vs {closed}");
 }
 
 /// docs/trains.md: the AVE S-103 preset as moving forces over a 25 m span.
