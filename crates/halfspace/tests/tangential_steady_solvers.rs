@@ -1,5 +1,5 @@
 //! The steady-rolling Newton–Krylov solver (the default) against the Gauss–Seidel reference
-//! (SteadyGS-type sweeps with Anderson acceleration, references.md §C3.5, §C3.8) on random
+//! (SteadyGS-type sweeps with Anderson acceleration, references.md §C3.5, §C3.9) on random
 //! rolling cases: Hertzian ellipses of random aspect ratio, creepages, spin and μ, on grids
 //! 16² … 128², drawn by a seeded generator (every failure is reproducible from its printed
 //! case).

@@ -1,5 +1,5 @@
 //! Restarted GMRES with right preconditioning (Saad & Schultz, SIAM J. Sci. Stat. Comput. 7
-//! (1986) 856; references.md §C3.8), matrix-free: the inner linear solver of the
+//! (1986) 856; references.md §C3.9), matrix-free: the inner linear solver of the
 //! steady-rolling Newton–Krylov iteration.
 
 use crate::linalg::dot;
