@@ -133,7 +133,7 @@ fn grid_table() -> Result<()> {
         "slip",
         "iters",
         "products",
-        "convs",
+        "FFTs",
         "time ms",
         "ms/product"
     );

@@ -50,6 +50,20 @@
 //! solution) is unchanged; measured: 2D rolling needs 10–20× fewer sweeps (Carter, 221
 //! elements: 4448 → 192), shifts 2× fewer (44 × 44: 87 → 38), 3D rolling about the same.
 //!
+//! **Steady rolling: semismooth Newton–Krylov** (the default, [`SteadySolver::NewtonKrylov`];
+//! references.md §C3.9; the sweeps above are the reference, [`SteadySolver::GaussSeidel`]).
+//! Unknowns: p_I in adhesion, the angle θ_I in slip with p_I = g_I (cos θ_I, sin θ_I).
+//! Equations F = 0: S_I = 0 in adhesion, S_I · t_I = 0 in slip (t_I = (−sin θ_I, cos θ_I):
+//! S opposite to p). Each Newton step computes S (one FFT product), moves adhesion elements
+//! beyond the bound to slip and slip elements with S·p > 0 to adhesion, and solves J d = −F
+//! matrix-free by restarted GMRES (one FFT product per iteration, Jacobi preconditioner) to a
+//! relative residual η (0.1; tightened on the last steps so that the remaining error
+//! η‖Δp‖ ≤ tol‖p‖). J: adhesion rows C, slip columns C g t, slip rows t·(…) plus the diagonal
+//! −p̂·S = |S|. It stops when the split is settled, every adhesion element is within its bound
+//! and η‖Δp‖_rms ≤ tol‖p‖_rms; if it does not within `max_iter` steps the Gauss–Seidel
+//! reference continues from its iterate ([`TangentialSolution::steady_fallback`]). Files
+//! `steady_nk.rs` (the Newton iteration and J) and `gmres.rs`.
+//!
 //! **Prescribed forces.** Newton's method on (ξ, η) (rolling) or (w_x, w_y) (shift), with the
 //! 2 × 2 Jacobian by forward differences and step halving, started from the full-adhesion
 //! (linear) response; CONTACT does the same on the creepages (references.md §C3.5).
