@@ -134,3 +134,48 @@ fn newton_krylov_equals_gauss_seidel_on_random_rolling_cases() {
         }
     }
 }
+
+#[test]
+fn iteration_limit_falls_back_and_reports_non_convergence() {
+    // tractcurv on 24 × 24 at ξ = 1e-3 needs about 8 Newton steps from rest: with a limit of 2
+    // the Newton–Krylov solver stops, the Gauss–Seidel fallback runs its 2 sweeps from that
+    // iterate and the solve ends in the typed error (no panic, no silent result).
+    let m = Material::from_combined(82e9, 0.28).unwrap();
+    let shape = GapShape::Quadratic {
+        a: 0.8,
+        b: 0.281417,
+    };
+    let h = shape.hertz(&m, NormalLoad::Force(106.7e3)).unwrap();
+    let grid = Grid::centred(24, 24, 2.1 * h.a / 24.0, 2.1 * h.b / 24.0, 0.0, 0.0).unwrap();
+    let gap = shape.sample(&grid).unwrap();
+    let normal = NormalSolver::new(grid, m)
+        .unwrap()
+        .solve(&gap, NormalLoad::Force(106.7e3), &SolverOptions::default())
+        .unwrap();
+    let load = RollingLoad::Creepages(Creepages {
+        xi: 1e-3,
+        eta: 0.0,
+        phi: 0.0,
+    });
+    let tight = TangentialOptions {
+        max_iter: 2,
+        ..Default::default()
+    };
+    let err = TangentialSolver::new(grid, m)
+        .unwrap()
+        .steady_rolling(&normal.pressure, 0.3, load, &tight)
+        .unwrap_err();
+    assert!(
+        matches!(
+            err,
+            ContactError::TangentialNotConverged { iterations: 2, .. }
+        ),
+        "{err}"
+    );
+    // With the default limit the same solve converges without the fallback.
+    let s = TangentialSolver::new(grid, m)
+        .unwrap()
+        .steady_rolling(&normal.pressure, 0.3, load, &TangentialOptions::default())
+        .unwrap();
+    assert!(!s.steady_fallback && s.iterations < 20, "{}", s.iterations);
+}

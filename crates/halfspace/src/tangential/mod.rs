@@ -60,7 +60,7 @@
 //! relative residual η (0.1; tightened on the last steps so that the remaining error
 //! η‖Δp‖ ≤ tol‖p‖). J: adhesion rows C, slip columns C g t, slip rows t·(…) plus the diagonal
 //! −p̂·S = |S|. It stops when the split is settled, every adhesion element is within its bound
-//! and η‖Δp‖_rms ≤ tol‖p‖_rms; if it does not within `max_iter` steps the Gauss–Seidel
+//! and η‖Δp‖_rms ≤ tol‖p‖_rms; if it does not within min(`max_iter`, 100) steps the Gauss–Seidel
 //! reference continues from its iterate ([`TangentialSolution::steady_fallback`]). Files
 //! `steady_nk.rs` (the Newton iteration and J) and `gmres.rs`.
 //!
@@ -174,9 +174,11 @@ pub enum SteadySolver {
 /// Controls of the tangential iteration.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TangentialOptions {
-    /// Relative tolerance on ‖Δp‖_rms/‖p‖_rms per Gauss–Seidel sweep (default 1e-7).
+    /// Relative tolerance on ‖Δp‖_rms/‖p‖_rms per Gauss–Seidel sweep, and on the remaining
+    /// error η‖Δp‖_rms/‖p‖_rms of the steady-rolling Newton–Krylov solver (default 1e-7).
     pub tol: f64,
-    /// Sweep limit per solve (default 10000; 2D rolling with large adhesion areas needs thousands).
+    /// Sweep limit per solve (default 10000; 2D rolling with large adhesion areas needs
+    /// thousands); the Newton–Krylov solver stops after min(max_iter, 100) Newton steps.
     pub max_iter: usize,
     /// Relaxation ω ∈ (0, 2) of adhesion updates (default 1). Steady rolling relaxes every
     /// element with min(ω, 0.5), reduced automatically when sweeps oscillate.

@@ -17,6 +17,9 @@ enum Class {
 const RESTART: usize = 40;
 /// Product limit of one inner solve.
 const INNER_PRODUCTS: usize = 200;
+/// Newton-step limit before the Gauss–Seidel fallback (at most `max_iter`): the measured cases
+/// need 5–15.
+const MAX_NEWTON: usize = 100;
 
 /// The Newton system J d = −F of one iteration, matrix-free (module documentation).
 struct Jacobian<'a, T: TangentialInfluenceOperator> {
@@ -98,8 +101,9 @@ pub(super) struct NkReport {
 
 impl<T: TangentialInfluenceOperator> TangentialSolver<T> {
     /// Steady rolling S = b + C p with C = A − A_v (prepared) by semismooth Newton–Krylov
-    /// from the current p. Err(report) when it did not converge within `options.max_iter`
-    /// Newton steps (the caller falls back to the Gauss–Seidel reference).
+    /// from the current p. Err(report) when it did not converge within
+    /// min(`options.max_iter`, 100) Newton steps (the caller falls back to the Gauss–Seidel
+    /// reference).
     pub(super) fn solve_steady_nk(
         &mut self,
         options: &TangentialOptions,
@@ -139,7 +143,7 @@ impl<T: TangentialInfluenceOperator> TangentialSolver<T> {
         let mut jac_scratch = (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
         let mut eta: f64 = 0.1;
         let result = loop {
-            if report.newton >= options.max_iter {
+            if report.newton >= options.max_iter.min(MAX_NEWTON) {
                 break Err(());
             }
             report.newton += 1;
