@@ -1,104 +1,196 @@
-//! `dyncontact bench tangential`: steady rolling of a Hertzian case on 44 × 44 elements with
-//! creepage prescribed (time and sweeps), and a full creep curve of 41 points.
+//! `dyncontact bench tangential`: steady rolling of CONTACT's `tractcurv` ellipse with
+//! creepage prescribed, by the default Newton–Krylov solver and the Gauss–Seidel reference:
+//! a 44 × 44 table over ξ (cold and warm starts), the cost against the grid size (44², 100²,
+//! 200²: time, iterations, operator products and FFT convolutions per solve), the 41-point
+//! creep curve at 44 × 44, and the shift and transient-rolling solves (which the steady
+//! solver does not touch) for before/after comparisons.
 
 use std::time::Instant;
 
 use anyhow::{Result, anyhow};
 use halfspace::{
-    Creepages, FastsimInput, GapShape, Grid, Material, NormalLoad, NormalSolver, RollingLoad,
-    SolverOptions, TangentialOptions, TangentialSolver, fastsim,
+    Creepages, FastsimInput, GapShape, Grid, Hertz, Material, NormalLoad, NormalSolution,
+    NormalSolver, RollingLoad, ShiftLoad, SolverOptions, SteadySolver, StepMotion,
+    TangentialOptions, TangentialSolver, fastsim,
 };
 
+/// Normal force of tractcurv \[N\] and the friction coefficient of the benchmark.
+const FN: f64 = 106.7e3;
+const MU: f64 = 0.3;
+
 /// The tractcurv ellipse of references.md §C4.1 (A = 0.8 /m, a/b = 0.5, F_n = 106.7 kN,
-/// G = 82 GPa, ν = 0.28), μ = 0.3, on 44 × 44 elements over 1.05 × the ellipse.
-pub fn tangential() -> Result<()> {
+/// G = 82 GPa, ν = 0.28) on n × n elements over 1.05 × the ellipse, with its normal solution.
+fn tractcurv(n: usize) -> Result<(Grid, Material, NormalSolution, Hertz)> {
     let m = Material::from_combined(82e9, 0.28).map_err(|e| anyhow!("{e}"))?;
     let shape = GapShape::Quadratic {
         a: 0.8,
         b: 0.281417,
     };
-    let fn_ = 106.7e3;
-    let mu = 0.3;
     let h = shape
-        .hertz(&m, NormalLoad::Force(fn_))
+        .hertz(&m, NormalLoad::Force(FN))
         .ok_or_else(|| anyhow!("Hertz"))?;
-    let n = 44;
     let grid = Grid::centred(n, n, 2.1 * h.a / n as f64, 2.1 * h.b / n as f64, 0.0, 0.0)
         .map_err(|e| anyhow!("{e}"))?;
     let gap = shape.sample(&grid).map_err(|e| anyhow!("{e}"))?;
     let normal = NormalSolver::new(grid, m)
         .map_err(|e| anyhow!("{e}"))?
-        .solve(&gap, NormalLoad::Force(fn_), &SolverOptions::default())
+        .solve(&gap, NormalLoad::Force(FN), &SolverOptions::default())
         .map_err(|e| anyhow!("{e}"))?;
+    Ok((grid, m, normal, h))
+}
+
+fn options(solver: SteadySolver) -> TangentialOptions {
+    TangentialOptions {
+        steady_solver: solver,
+        ..Default::default()
+    }
+}
+
+fn name(solver: SteadySolver) -> &'static str {
+    match solver {
+        SteadySolver::NewtonKrylov => "NK",
+        SteadySolver::GaussSeidel => "GS",
+    }
+}
+
+fn creep(xi: f64) -> RollingLoad {
+    RollingLoad::Creepages(Creepages {
+        xi,
+        eta: 0.0,
+        phi: 0.0,
+    })
+}
+
+/// All tables (module documentation).
+pub fn tangential() -> Result<()> {
+    xi_table()?;
+    grid_table()?;
+    creep_curve()?;
+    shift_and_transient()
+}
+
+fn xi_table() -> Result<()> {
+    let (grid, m, normal, h) = tractcurv(44)?;
     println!(
-        "steady rolling, tractcurv ellipse (a = {:.3} mm, b = {:.3} mm), {n} x {n} grid, {} elements in contact, mu = {mu}, tol 1e-7, {} rayon threads",
+        "steady rolling, tractcurv ellipse (a = {:.3} mm, b = {:.3} mm), 44 x 44 grid, {} elements in contact, mu = {MU}, tol 1e-7, {} rayon threads",
         h.a * 1e3,
         h.b * 1e3,
         normal.elements_in_contact,
         rayon::current_num_threads()
     );
     println!(
-        "{:>10} {:>10} {:>10} {:>6} {:>6} {:>8} {:>10}",
-        "xi", "Fx/muFn", "start", "adh", "slip", "sweeps", "time ms"
+        "(NK: Newton-Krylov, the default, iterations = Newton steps; GS: Gauss-Seidel reference, iterations = sweeps; products = operator products, 4 FFT convolutions each)"
     );
-    let opts = TangentialOptions::default();
+    println!(
+        "{:>10} {:>7} {:>13} {:>6} {:>6} {:>6} {:>6} {:>9} {:>10}",
+        "xi", "solver", "Fx/muFn", "start", "adh", "slip", "iters", "products", "time ms"
+    );
     for xi in [1e-5, 3e-4, 1e-3, 3e-3] {
-        let load = RollingLoad::Creepages(Creepages {
-            xi,
-            eta: 0.0,
-            phi: 0.0,
-        });
-        for warm in [false, true] {
-            let mut solver = TangentialSolver::new(grid, m).map_err(|e| anyhow!("{e}"))?;
-            if warm {
-                // Warm start from a neighbouring creepage (as in a creep curve).
-                let prev = RollingLoad::Creepages(Creepages {
-                    xi: 0.9 * xi,
-                    eta: 0.0,
-                    phi: 0.0,
-                });
-                solver
-                    .steady_rolling(&normal.pressure, mu, prev, &opts)
+        for solver in [SteadySolver::NewtonKrylov, SteadySolver::GaussSeidel] {
+            let opts = options(solver);
+            for warm in [false, true] {
+                let mut ts = TangentialSolver::new(grid, m).map_err(|e| anyhow!("{e}"))?;
+                if warm {
+                    // Warm start from a neighbouring creepage (as in a creep curve).
+                    ts.steady_rolling(&normal.pressure, MU, creep(0.9 * xi), &opts)
+                        .map_err(|e| anyhow!("{e}"))?;
+                }
+                let t = Instant::now();
+                let s = ts
+                    .steady_rolling(&normal.pressure, MU, creep(xi), &opts)
                     .map_err(|e| anyhow!("{e}"))?;
+                let ms = 1e3 * t.elapsed().as_secs_f64();
+                println!(
+                    "{:>10.1e} {:>7} {:>13.9} {:>6} {:>6} {:>6} {:>6} {:>9} {:>10.2}",
+                    xi,
+                    name(solver),
+                    s.force_x / (MU * FN),
+                    if warm { "warm" } else { "cold" },
+                    s.adhesion_elements,
+                    s.slip_elements,
+                    s.iterations,
+                    s.products,
+                    ms
+                );
             }
+        }
+    }
+    Ok(())
+}
+
+/// Cost per solve against the grid size at ξ = 1e-3, cold start. The Gauss–Seidel reference
+/// is run up to 100 × 100 (its dense column updates cost O(n_c²) per sweep).
+fn grid_table() -> Result<()> {
+    println!();
+    println!("steady rolling, tractcurv, xi = 1e-3, cold start, against the grid size:");
+    println!(
+        "{:>9} {:>8} {:>7} {:>13} {:>6} {:>6} {:>6} {:>9} {:>6} {:>10} {:>11}",
+        "grid",
+        "contact",
+        "solver",
+        "Fx/muFn",
+        "adh",
+        "slip",
+        "iters",
+        "products",
+        "FFTs",
+        "time ms",
+        "ms/product"
+    );
+    for n in [44, 100, 200] {
+        let (grid, m, normal, _) = tractcurv(n)?;
+        for solver in [SteadySolver::NewtonKrylov, SteadySolver::GaussSeidel] {
+            if solver == SteadySolver::GaussSeidel && n > 100 {
+                continue;
+            }
+            let mut ts = TangentialSolver::new(grid, m).map_err(|e| anyhow!("{e}"))?;
             let t = Instant::now();
-            let s = solver
-                .steady_rolling(&normal.pressure, mu, load, &opts)
+            let s = ts
+                .steady_rolling(&normal.pressure, MU, creep(1e-3), &options(solver))
                 .map_err(|e| anyhow!("{e}"))?;
             let ms = 1e3 * t.elapsed().as_secs_f64();
             println!(
-                "{:>10.1e} {:>10.5} {:>10} {:>6} {:>6} {:>8} {:>10.2}",
-                xi,
-                s.force_x / (mu * fn_),
-                if warm { "warm" } else { "cold" },
+                "{:>9} {:>8} {:>7} {:>13.9} {:>6} {:>6} {:>6} {:>9} {:>6} {:>10.1} {:>11.3}",
+                format!("{n} x {n}"),
+                normal.elements_in_contact,
+                name(solver),
+                s.force_x / (MU * FN),
                 s.adhesion_elements,
                 s.slip_elements,
                 s.iterations,
-                ms
+                s.products,
+                4 * s.products,
+                ms,
+                ms / s.products.max(1) as f64
             );
         }
     }
-    // A full creep curve: 41 points ξ = 0 … 0.004, warm-started.
-    let mut solver = TangentialSolver::new(grid, m).map_err(|e| anyhow!("{e}"))?;
-    let t = Instant::now();
-    let mut sweeps = 0;
-    for k in 0..41 {
-        let xi = 0.004 * k as f64 / 40.0;
-        let s = solver
-            .steady_rolling(
-                &normal.pressure,
-                mu,
-                RollingLoad::Creepages(Creepages {
-                    xi,
-                    eta: 0.0,
-                    phi: 0.0,
-                }),
-                &opts,
-            )
-            .map_err(|e| anyhow!("{e}"))?;
-        sweeps += s.iterations;
+    Ok(())
+}
+
+/// The 41-point creep curve ξ = 0 … 0.004 at 44 × 44, each solver warm-started along the
+/// curve on one solver object (kernels tabulated and FFTs planned once), against FASTSIM.
+fn creep_curve() -> Result<()> {
+    let (grid, m, normal, h) = tractcurv(44)?;
+    println!();
+    for solver in [SteadySolver::NewtonKrylov, SteadySolver::GaussSeidel] {
+        let opts = options(solver);
+        let mut ts = TangentialSolver::new(grid, m).map_err(|e| anyhow!("{e}"))?;
+        let t = Instant::now();
+        let (mut iters, mut products) = (0, 0);
+        for k in 0..41 {
+            let s = ts
+                .steady_rolling(&normal.pressure, MU, creep(0.004 * k as f64 / 40.0), &opts)
+                .map_err(|e| anyhow!("{e}"))?;
+            iters += s.iterations;
+            products += s.products;
+        }
+        let ms = 1e3 * t.elapsed().as_secs_f64();
+        println!(
+            "creep curve, 41 points xi = 0 .. 0.004, 44 x 44, {}: {ms:.1} ms ({iters} iterations, {products} products)",
+            name(solver)
+        );
     }
-    let exact_ms = 1e3 * t.elapsed().as_secs_f64();
     let t = Instant::now();
     for k in 0..41 {
         let input = FastsimInput {
@@ -106,17 +198,72 @@ pub fn tangential() -> Result<()> {
             b: h.b,
             g: m.g,
             nu: m.nu,
-            mu,
-            normal_force: fn_,
+            mu: MU,
+            normal_force: FN,
             xi: 0.004 * k as f64 / 40.0,
             eta: 0.0,
             phi: 0.0,
         };
-        fastsim(&input, n, n).map_err(|e| anyhow!("{e}"))?;
+        fastsim(&input, 44, 44).map_err(|e| anyhow!("{e}"))?;
     }
-    let fastsim_ms = 1e3 * t.elapsed().as_secs_f64();
     println!(
-        "creep curve, 41 points xi = 0 .. 0.004: exact {exact_ms:.1} ms ({sweeps} sweeps), FASTSIM {n} x {n} {fastsim_ms:.3} ms"
+        "creep curve, FASTSIM 44 x 44: {:.3} ms",
+        1e3 * t.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+/// A shift with the force prescribed (0.5 μ F_n) and 44 transient rolling steps from rest
+/// (δq = δx, ξ = 1e-3) on the 44 × 44 tractcurv grid: unchanged by the steady solver.
+fn shift_and_transient() -> Result<()> {
+    let (grid, m, normal, _) = tractcurv(44)?;
+    let opts = TangentialOptions::default();
+    println!();
+    let mut ts = TangentialSolver::new(grid, m).map_err(|e| anyhow!("{e}"))?;
+    let t = Instant::now();
+    let s = ts
+        .shift(
+            &normal.pressure,
+            MU,
+            ShiftLoad::Forces {
+                fx: 0.5 * MU * FN,
+                fy: 0.0,
+            },
+            &opts,
+        )
+        .map_err(|e| anyhow!("{e}"))?;
+    println!(
+        "shift, Fx = 0.5 mu Fn, 44 x 44: {:.1} ms ({} sweeps, {} Newton steps)",
+        1e3 * t.elapsed().as_secs_f64(),
+        s.iterations,
+        s.newton_iterations
+    );
+    let mut ts = TangentialSolver::new(grid, m).map_err(|e| anyhow!("{e}"))?;
+    let (mut px, mut py) = (vec![0.0; grid.len()], vec![0.0; grid.len()]);
+    let motion = StepMotion {
+        delta_q: grid.dx,
+        creepages: Creepages {
+            xi: 1e-3,
+            eta: 0.0,
+            phi: 0.0,
+        },
+        shift: (0.0, 0.0),
+    };
+    let t = Instant::now();
+    let (mut sweeps, mut fx) = (0, 0.0);
+    for _ in 0..44 {
+        let s = ts
+            .transient_step(&normal.pressure, MU, (&px, &py), motion, &opts)
+            .map_err(|e| anyhow!("{e}"))?;
+        sweeps += s.iterations;
+        fx = s.force_x;
+        px = s.traction_x;
+        py = s.traction_y;
+    }
+    println!(
+        "transient rolling, 44 steps from rest, xi = 1e-3, 44 x 44: {:.1} ms ({sweeps} sweeps), Fx/muFn {:.5} at the end",
+        1e3 * t.elapsed().as_secs_f64(),
+        fx / (MU * FN)
     );
     Ok(())
 }

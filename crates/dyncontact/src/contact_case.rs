@@ -116,7 +116,7 @@ pub fn print_summary(s: &ContactSummary) {
         }
         if let Some(i) = t.tangential_iterations {
             println!(
-                "  Gauss-Seidel      {i} sweeps, {} Newton iterations, {:.3} ms",
+                "  solver            {i} iterations, {} Newton iterations on forces, {:.3} ms",
                 t.newton_iterations.unwrap_or(0),
                 1e3 * t.tangential_time_s
             );

@@ -128,7 +128,7 @@ fn print_table(c: &CreepCurve, which: usize) {
     );
     println!(
         "{:>12} {:>10} {:>10} {:>10} {:>6} {:>6} {:>7}",
-        c.variable, "exact", "FASTSIM", "linear", "adh", "slip", "sweeps"
+        c.variable, "exact", "FASTSIM", "linear", "adh", "slip", "iters"
     );
     let opt = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{:.5}", v / lim));
     for p in &c.points {

@@ -83,6 +83,8 @@ pub struct FftConvolution {
     rows: Vec<f64>,
     row_spectra: Vec<Complex64>,
     columns: Vec<Complex64>,
+    /// Second column buffer of [`FftConvolution::apply_block`].
+    columns2: Vec<Complex64>,
     row_scratch: Vec<Complex64>,
     col_scratch: Vec<Complex64>,
     tasks: usize,
@@ -133,6 +135,7 @@ impl FftConvolution {
             rows: vec![0.0; ny * mx],
             row_spectra: vec![Complex64::default(); ny * kx],
             columns: vec![Complex64::default(); kx * my],
+            columns2: Vec::new(),
             row_scratch: vec![Complex64::default(); tasks * row_scratch_len],
             col_scratch: vec![Complex64::default(); tasks * col_scratch_len],
             tasks,
@@ -181,12 +184,88 @@ impl FftConvolution {
     /// `output = K * input` (linear, non-periodic convolution on the grid) for the kernel
     /// whose spectrum is given. `input` and `output` have `nx·ny` values. No allocation.
     pub fn apply(&mut self, spectrum: &KernelSpectrum, input: &[f64], output: &mut [f64]) {
-        let (nx, mx, my, kx) = (self.nx, self.mx, self.my, self.kx);
+        let (nx, my, kx) = (self.nx, self.my, self.kx);
         assert_eq!(input.len(), nx * self.ny);
         assert_eq!(output.len(), nx * self.ny);
         assert_eq!(spectrum.values.len(), kx * my);
-        let rows_per_task = self.ny.div_ceil(self.tasks);
+        let mut columns = std::mem::take(&mut self.columns);
+        self.rows_to_columns(input, &mut columns);
+        // 3. Column transforms, kernel multiplication, inverse column transforms.
+        let cols_per_task = kx.div_ceil(self.tasks);
+        let (fwd, inv) = (&self.col_forward, &self.col_inverse);
+        let kernel = &spectrum.values;
+        columns
+            .par_chunks_mut(cols_per_task * my)
+            .zip(kernel.par_chunks(cols_per_task * my))
+            .zip(self.col_scratch.par_chunks_mut(self.col_scratch_len))
+            .with_max_len(1)
+            .for_each(|((cols, kern), scratch)| {
+                fwd.process_with_scratch(cols, scratch);
+                for (v, k) in cols.iter_mut().zip(kern) {
+                    *v *= *k;
+                }
+                inv.process_with_scratch(cols, scratch);
+            });
+        self.columns_to_rows(&columns, output);
+        self.columns = columns;
+    }
 
+    /// The 2 × 2 block product of a symmetric kernel block \[\[xx, xy\], \[xy, yy\]\]:
+    /// `out_x = K_xx * in_x + K_xy * in_y`, `out_y = K_xy * in_x + K_yy * in_y`, with one
+    /// forward transform per input and one inverse per output (4 transforms instead of the 8
+    /// of four [`Self::apply`] calls). Allocates its second buffer on first use only.
+    pub fn apply_block(
+        &mut self,
+        [kxx, kxy, kyy]: [&KernelSpectrum; 3],
+        (in_x, in_y): (&[f64], &[f64]),
+        (out_x, out_y): (&mut [f64], &mut [f64]),
+    ) {
+        let (nx, my, kx) = (self.nx, self.my, self.kx);
+        for v in [in_x, in_y, &*out_x, &*out_y] {
+            assert_eq!(v.len(), nx * self.ny);
+        }
+        for k in [kxx, kxy, kyy] {
+            assert_eq!(k.values.len(), kx * my);
+        }
+        let mut a = std::mem::take(&mut self.columns);
+        let mut b = std::mem::take(&mut self.columns2);
+        b.resize(kx * my, Complex64::default());
+        self.rows_to_columns(in_x, &mut a);
+        self.rows_to_columns(in_y, &mut b);
+        let cols_per_task = kx.div_ceil(self.tasks);
+        let (fwd, inv) = (&self.col_forward, &self.col_inverse);
+        let chunk = cols_per_task * my;
+        a.par_chunks_mut(chunk)
+            .zip(b.par_chunks_mut(chunk))
+            .zip(kxx.values.par_chunks(chunk))
+            .zip(kxy.values.par_chunks(chunk))
+            .zip(kyy.values.par_chunks(chunk))
+            .zip(self.col_scratch.par_chunks_mut(self.col_scratch_len))
+            .with_max_len(1)
+            .for_each(|(((((ca, cb), xx), xy), yy), scratch)| {
+                fwd.process_with_scratch(ca, scratch);
+                fwd.process_with_scratch(cb, scratch);
+                for ((((u, v), xx), xy), yy) in
+                    ca.iter_mut().zip(cb.iter_mut()).zip(xx).zip(xy).zip(yy)
+                {
+                    let (p, q) = (*u, *v);
+                    *u = xx * p + xy * q;
+                    *v = xy * p + yy * q;
+                }
+                inv.process_with_scratch(ca, scratch);
+                inv.process_with_scratch(cb, scratch);
+            });
+        self.columns_to_rows(&a, out_x);
+        self.columns_to_rows(&b, out_y);
+        self.columns = a;
+        self.columns2 = b;
+    }
+
+    /// Steps 1–2 of the module documentation: pad and transform the rows of `input`, scatter
+    /// the row spectra into `columns` (zero rows ny..2ny are the padding).
+    fn rows_to_columns(&mut self, input: &[f64], columns: &mut [Complex64]) {
+        let (nx, mx, my, kx) = (self.nx, self.mx, self.my, self.kx);
+        let rows_per_task = self.ny.div_ceil(self.tasks);
         // 1. Pad and transform the rows.
         let r2c = &self.r2c;
         self.rows
@@ -212,7 +291,7 @@ impl FftConvolution {
         //    transpose keeps both the strided reads and the writes in cache.
         let (ny, row_spectra) = (self.ny, &self.row_spectra);
         let cols_per_task = kx.div_ceil(self.tasks);
-        self.columns
+        columns
             .par_chunks_mut(cols_per_task * my)
             .enumerate()
             .with_max_len(1)
@@ -237,25 +316,14 @@ impl FftConvolution {
                     col[ny..].fill(Complex64::default());
                 }
             });
+    }
 
-        // 3. Column transforms, kernel multiplication, inverse column transforms.
-        let (fwd, inv) = (&self.col_forward, &self.col_inverse);
-        let kernel = &spectrum.values;
-        self.columns
-            .par_chunks_mut(cols_per_task * my)
-            .zip(kernel.par_chunks(cols_per_task * my))
-            .zip(self.col_scratch.par_chunks_mut(self.col_scratch_len))
-            .with_max_len(1)
-            .for_each(|((cols, kern), scratch)| {
-                fwd.process_with_scratch(cols, scratch);
-                for (v, k) in cols.iter_mut().zip(kern) {
-                    *v *= *k;
-                }
-                inv.process_with_scratch(cols, scratch);
-            });
-
+    /// Step 4 of the module documentation: gather the kept rows of `columns` (after the
+    /// inverse column transforms) and transform them back into `output`.
+    fn columns_to_rows(&mut self, columns: &[Complex64], output: &mut [f64]) {
+        let (nx, mx, my, kx) = (self.nx, self.mx, self.my, self.kx);
+        let rows_per_task = self.ny.div_ceil(self.tasks);
         // 4. Gather the kept rows (tiled transpose) and transform them back.
-        let columns = &self.columns;
         self.row_spectra
             .par_chunks_mut(rows_per_task * kx)
             .enumerate()

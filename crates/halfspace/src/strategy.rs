@@ -13,7 +13,8 @@ use crate::material::Material;
 /// How the tangential problem is solved.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum TangentialMethod {
-    /// The half-space solver (ConvexGS/SteadyGS, references.md §C3.5).
+    /// The half-space solver (ConvexGS/SteadyGS, references.md §C3.5; steady rolling by
+    /// Newton–Krylov, §C3.9).
     Exact,
     /// Kalker's FASTSIM on the Hertz ellipse (references.md §C4.3).
     Fastsim,

@@ -52,6 +52,9 @@ pub struct CurvePoint {
     pub exact_spin_moment: f64,
     pub exact_adhesion_elements: usize,
     pub exact_slip_elements: usize,
+    /// Iterations of the exact solver at this point (Newton steps of the default
+    /// steady-rolling solver, sweeps of the Gauss–Seidel reference; the key keeps its
+    /// historical name).
     pub exact_sweeps: usize,
     pub fastsim_force_x: Option<f64>,
     pub fastsim_force_y: Option<f64>,

@@ -165,6 +165,7 @@ pub struct FftTangentialInfluence {
     coupling_steady: Option<[KernelSpectrum; 2]>,
     coupling_shifted: Option<(f64, [KernelSpectrum; 2])>,
     tmp: Vec<f64>,
+    tmp2: Vec<f64>,
 }
 
 impl FftTangentialInfluence {
@@ -190,6 +191,7 @@ impl FftTangentialInfluence {
             coupling_steady: None,
             coupling_shifted: None,
             tmp: vec![0.0; grid.len()],
+            tmp2: vec![0.0; grid.len()],
         })
     }
 
@@ -243,12 +245,6 @@ fn sub(a: &mut [f64], b: &[f64]) {
     }
 }
 
-fn add(a: &mut [f64], b: &[f64]) {
-    for (x, y) in a.iter_mut().zip(b) {
-        *x += y;
-    }
-}
-
 impl TangentialInfluenceOperator for FftTangentialInfluence {
     fn grid(&self) -> &Grid {
         &self.grid
@@ -299,21 +295,14 @@ impl TangentialInfluenceOperator for FftTangentialInfluence {
     ) {
         let set = block(&self.direct, &self.steady, &self.shifted, kernel);
         let [kxx, kxy, kyy] = &set.spectra;
-        let (conv, tmp) = (&mut self.conv, &mut self.tmp);
+        let spectra = [kxx, kxy, kyy];
         match update {
-            Update::Set => {
-                conv.apply(kxx, px, ux);
-                conv.apply(kxy, py, tmp);
-                add(ux, tmp);
-                conv.apply(kxy, px, uy);
-                conv.apply(kyy, py, tmp);
-                add(uy, tmp);
-            }
+            Update::Set => self.conv.apply_block(spectra, (px, py), (ux, uy)),
             Update::Subtract => {
-                convolve(conv, kxx, update, px, ux, tmp);
-                convolve(conv, kxy, update, py, ux, tmp);
-                convolve(conv, kxy, update, px, uy, tmp);
-                convolve(conv, kyy, update, py, uy, tmp);
+                let (tx, ty) = (&mut self.tmp, &mut self.tmp2);
+                self.conv.apply_block(spectra, (px, py), (tx, ty));
+                sub(ux, tx);
+                sub(uy, ty);
             }
         }
     }

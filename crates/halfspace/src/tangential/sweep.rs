@@ -164,6 +164,7 @@ impl<T: TangentialInfluenceOperator> TangentialSolver<T> {
     /// S = C p + b exactly (one operator product): at the start of a solve, before each
     /// sweep over several rows, after an acceleration step and at convergence.
     pub(super) fn refresh_shift(&mut self, op: TangentialKernel) {
+        self.products += 1;
         self.operator.traction_product(
             op,
             Update::Set,
@@ -231,6 +232,8 @@ impl<T: TangentialInfluenceOperator> TangentialSolver<T> {
             iterations,
             newton_iterations,
             residual,
+            products: self.products,
+            steady_fallback: self.fallback,
         }
     }
 }

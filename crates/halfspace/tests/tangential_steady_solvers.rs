@@ -1,0 +1,181 @@
+//! The steady-rolling Newton–Krylov solver (the default) against the Gauss–Seidel reference
+//! (SteadyGS-type sweeps with Anderson acceleration, references.md §C3.5, §C3.9) on random
+//! rolling cases: Hertzian ellipses of random aspect ratio, creepages, spin and μ, on grids
+//! 16² … 128², drawn by a seeded generator (every failure is reproducible from its printed
+//! case).
+//!
+//! Tolerance. Both solvers stop on ‖Δp‖_rms ≤ tol ‖p‖_rms with tol = 1e-7; the Gauss–Seidel
+//! test bounds the change of one sweep, whose true error is larger by 1/(1 − ρ) for a sweep
+//! contraction ρ (0.7–0.95 on these cases), and the Newton–Krylov test bounds its remaining
+//! inexact-Newton error η‖Δp‖ by the same tol. The two solutions may therefore differ by
+//! ~10–20 tol: tractions (rms over the grid) and forces are compared at 2e-6 of μ·max p_n and
+//! of μ F_n (measured: at most 3.3e-7). Element states may differ only where |p| is within
+//! that margin of the bound (an adhesion element at the bound is a slip element with zero
+//! slip), which is checked element by element.
+
+use halfspace::*;
+
+/// SplitMix64 (Steele, Lea & Flood 2014): a fixed-seed uniform generator on [0, 1).
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.next()
+    }
+}
+
+fn compare(case: usize, n: usize, rng: &mut Rng) {
+    let m = Material::from_combined(82e9, 0.28).unwrap();
+    // Curvatures A = 0.8 /m (tractcurv) and B for an aspect ratio b/a in about 0.3 … 3.
+    let a_curv = 0.8;
+    let b_curv = a_curv * rng.range(0.15, 4.0);
+    let shape = GapShape::Quadratic {
+        a: a_curv,
+        b: b_curv,
+    };
+    let fn_ = rng.range(20e3, 150e3);
+    let mu = rng.range(0.1, 0.5);
+    let h = shape.hertz(&m, NormalLoad::Force(fn_)).unwrap();
+    let grid = Grid::centred(n, n, 2.1 * h.a / n as f64, 2.1 * h.b / n as f64, 0.0, 0.0).unwrap();
+    let gap = shape.sample(&grid).unwrap();
+    let normal = NormalSolver::new(grid, m)
+        .unwrap()
+        .solve(&gap, NormalLoad::Force(fn_), &SolverOptions::default())
+        .unwrap();
+    // Creepages up to about 0.8 μ a A: for tractcurv (μ = 0.3) 1.5e-3, where F_x reaches
+    // 0.8 μ F_n; most cases mix adhesion and slip.
+    let sat = 0.8 * mu * h.a * a_curv;
+    let c = Creepages {
+        xi: rng.range(-1.0, 1.0) * sat,
+        eta: rng.range(-1.0, 1.0) * sat,
+        phi: rng.range(-1.0, 1.0) * sat / h.a.min(h.b),
+    };
+    let load = RollingLoad::Creepages(c);
+    let solve = |solver: SteadySolver| {
+        let opts = TangentialOptions {
+            steady_solver: solver,
+            ..Default::default()
+        };
+        TangentialSolver::new(grid, m)
+            .unwrap()
+            .steady_rolling(&normal.pressure, mu, load, &opts)
+            .unwrap()
+    };
+    let nk = solve(SteadySolver::NewtonKrylov);
+    let gs = solve(SteadySolver::GaussSeidel);
+    let label = format!(
+        "case {case}: n {n}, B {b_curv:.4}, Fn {fn_:.1}, mu {mu:.4}, xi {:.4e}, eta {:.4e}, phi {:.4e}",
+        c.xi, c.eta, c.phi
+    );
+    println!(
+        "{label}: Fx {:.6e}/{:.6e} Fy {:.6e}/{:.6e} slip {}/{}, Newton {} ({} products), sweeps {}",
+        nk.force_x,
+        gs.force_x,
+        nk.force_y,
+        gs.force_y,
+        nk.slip_elements,
+        gs.slip_elements,
+        nk.iterations,
+        nk.products,
+        gs.iterations
+    );
+    assert!(!nk.steady_fallback, "{label}: Newton–Krylov fell back");
+    let tol = 2e-6;
+    let f = mu * normal.normal_force;
+    assert!((nk.force_x - gs.force_x).abs() <= tol * f, "{label}: F_x");
+    assert!((nk.force_y - gs.force_y).abs() <= tol * f, "{label}: F_y");
+    let pmax = mu * normal.pressure.iter().cloned().fold(0.0, f64::max);
+    let diff: f64 = (0..grid.len())
+        .map(|k| {
+            (nk.traction_x[k] - gs.traction_x[k]).powi(2)
+                + (nk.traction_y[k] - gs.traction_y[k]).powi(2)
+        })
+        .sum::<f64>()
+        / grid.len() as f64;
+    println!(
+        "  traction rms difference / (mu max p_n) = {:.2e}",
+        diff.sqrt() / pmax
+    );
+    assert!(
+        diff.sqrt() <= tol * pmax,
+        "{label}: traction rms {:e}",
+        diff.sqrt()
+    );
+    for k in 0..grid.len() {
+        if nk.state[k] != gs.state[k] {
+            let g = mu * normal.pressure[k];
+            let t = nk.traction_x[k].hypot(nk.traction_y[k]);
+            assert!(
+                (t - g).abs() <= tol * pmax,
+                "{label}: element {k} {:?} vs {:?}, |p| {t:e}, bound {g:e}",
+                nk.state[k],
+                gs.state[k]
+            );
+        }
+    }
+}
+
+#[test]
+fn newton_krylov_equals_gauss_seidel_on_random_rolling_cases() {
+    let mut rng = Rng(0x5EED_2026);
+    let mut case = 0;
+    for (n, count) in [(16, 6), (24, 4), (32, 4), (48, 2), (64, 2), (128, 1)] {
+        for _ in 0..count {
+            compare(case, n, &mut rng);
+            case += 1;
+        }
+    }
+}
+
+#[test]
+fn iteration_limit_falls_back_and_reports_non_convergence() {
+    // tractcurv on 24 × 24 at ξ = 1e-3 needs about 8 Newton steps from rest: with a limit of 2
+    // the Newton–Krylov solver stops, the Gauss–Seidel fallback runs its 2 sweeps from that
+    // iterate and the solve ends in the typed error (no panic, no silent result).
+    let m = Material::from_combined(82e9, 0.28).unwrap();
+    let shape = GapShape::Quadratic {
+        a: 0.8,
+        b: 0.281417,
+    };
+    let h = shape.hertz(&m, NormalLoad::Force(106.7e3)).unwrap();
+    let grid = Grid::centred(24, 24, 2.1 * h.a / 24.0, 2.1 * h.b / 24.0, 0.0, 0.0).unwrap();
+    let gap = shape.sample(&grid).unwrap();
+    let normal = NormalSolver::new(grid, m)
+        .unwrap()
+        .solve(&gap, NormalLoad::Force(106.7e3), &SolverOptions::default())
+        .unwrap();
+    let load = RollingLoad::Creepages(Creepages {
+        xi: 1e-3,
+        eta: 0.0,
+        phi: 0.0,
+    });
+    let tight = TangentialOptions {
+        max_iter: 2,
+        ..Default::default()
+    };
+    let err = TangentialSolver::new(grid, m)
+        .unwrap()
+        .steady_rolling(&normal.pressure, 0.3, load, &tight)
+        .unwrap_err();
+    assert!(
+        matches!(
+            err,
+            ContactError::TangentialNotConverged { iterations: 2, .. }
+        ),
+        "{err}"
+    );
+    // With the default limit the same solve converges without the fallback.
+    let s = TangentialSolver::new(grid, m)
+        .unwrap()
+        .steady_rolling(&normal.pressure, 0.3, load, &TangentialOptions::default())
+        .unwrap();
+    assert!(!s.steady_fallback && s.iterations < 20, "{}", s.iterations);
+}
