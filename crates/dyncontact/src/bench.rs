@@ -175,6 +175,26 @@ pub fn beam() -> Result<()> {
         ),
         1e3 * t
     );
+    // The track model (beam::track): Newmark step of the track + bridge under a moving force,
+    // per step (the set-up with its factorisation timed separately and subtracted).
+    let steps = 2000;
+    for approach in [15.0, 30.0, 60.0, 120.0] {
+        let track = work::ballasted_track_on_fryba_bridge(approach).map_err(e)?;
+        let setup = best_of(3, || {
+            checksum += work::track_moving_force(&track, 1e-4, 0).unwrap_or(f64::NAN)
+        });
+        let total = best_of(3, || {
+            checksum += work::track_moving_force(&track, 1e-4, steps).unwrap_or(f64::NAN)
+        });
+        println!(
+            "{:<58} {:>12.2}",
+            format!(
+                "track step, {approach} m + 25 m + {approach} m ({} DOFs), µs/step",
+                track.n_dofs()
+            ),
+            1e6 * (total - setup) / steps as f64
+        );
+    }
     if !checksum.is_finite() {
         return Err(anyhow!("a benchmark workload failed"));
     }

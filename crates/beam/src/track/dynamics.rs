@@ -2,6 +2,8 @@
 //! references.md §D3.5): the step matrix K + γ/(βΔt) C + 1/(βΔt²) M is constant for a fixed
 //! Δt, so it is factorised once and every step is one pair of triangular sweeps.
 
+use integrate::structural::sparse::{SparseMatrix, sparse_mul_add};
+
 use crate::error::{BeamError, positive};
 
 use super::model::Track;
@@ -11,9 +13,11 @@ const BETA: f64 = 0.25;
 const GAMMA: f64 = 0.5;
 
 /// Newmark (average acceleration) integrator of a [`Track`] under prescribed loads.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct TrackNewmark<'a> {
     track: &'a Track,
+    mass: SparseMatrix,
+    damping: SparseMatrix,
     dt: f64,
     solver: SparseCholesky,
     u: Vec<f64>,
@@ -33,8 +37,11 @@ impl<'a> TrackNewmark<'a> {
         let n = track.n_dofs();
         let solver =
             track.factorise_step_matrix(1.0 / (BETA * dt * dt), GAMMA / (BETA * dt), 1.0)?;
+        let [m, c, _] = track.matrices();
         Ok(Self {
             track,
+            mass: m.to_rows(),
+            damping: c.to_rows(),
             dt,
             solver,
             u,
@@ -61,12 +68,12 @@ impl<'a> TrackNewmark<'a> {
         for i in 0..self.u.len() {
             self.tmp[i] = a0 * self.u[i] + a2 * self.v[i] + a3 * self.a[i];
         }
-        self.track.mul_add(0, 1.0, &self.tmp, &mut self.rhs);
+        sparse_mul_add(self.mass.as_ref(), 1.0, &self.tmp, &mut self.rhs);
         // C (a1 u + a4 v + a5 a)
         for i in 0..self.u.len() {
             self.tmp[i] = a1 * self.u[i] + a4 * self.v[i] + a5 * self.a[i];
         }
-        self.track.mul_add(1, 1.0, &self.tmp, &mut self.rhs);
+        sparse_mul_add(self.damping.as_ref(), 1.0, &self.tmp, &mut self.rhs);
         self.solver.solve_in_place(&mut self.rhs);
         for i in 0..self.u.len() {
             let un = self.rhs[i];
@@ -92,6 +99,16 @@ impl<'a> TrackNewmark<'a> {
     /// Velocities.
     pub fn velocity(&self) -> &[f64] {
         &self.v
+    }
+
+    /// The track being integrated.
+    pub fn track(&self) -> &Track {
+        self.track
+    }
+
+    /// Number of stored entries of the step matrix's Cholesky factor.
+    pub fn factor_entries(&self) -> usize {
+        self.solver.factor_entries()
     }
 
     /// The step size.

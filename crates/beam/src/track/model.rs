@@ -556,7 +556,7 @@ impl Track {
     /// Static displacement K u = f for the load vector `load` (length [`Self::n_dofs`]).
     pub fn static_solution(&self, load: &[f64]) -> Result<Vec<f64>, BeamError> {
         crate::modal::check_len("load", load.len(), self.n_dofs())?;
-        let chol = SparseCholesky::factorise(
+        let mut chol = SparseCholesky::factorise(
             self.n_dofs(),
             &[(1.0, &self.stiffness)],
             "track stiffness matrix",
@@ -586,6 +586,7 @@ impl Track {
     }
 
     /// y += s (M x), (C x) or (K x) for `which` = 0, 1, 2.
+    #[cfg(test)]
     pub(crate) fn mul_add(&self, which: usize, s: f64, x: &[f64], y: &mut [f64]) {
         self.matrices()[which].mul_add(s, x, y);
     }

@@ -1,10 +1,12 @@
 //! Symmetric sparse matrices assembled from entries, their combinations and the sparse
 //! Cholesky factorisation of faer (fill-reducing ordering, symbolic analysis once).
 
-use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::sparse::linalg::cholesky::{
+    LltRef, SymbolicCholesky, SymmetricOrdering, factorize_symbolic_cholesky,
+};
 use faer::sparse::{SparseColMat, Triplet};
-use faer::{MatMut, Side};
+use faer::{Conj, MatMut, Par, Side};
 
 use crate::error::BeamError;
 
@@ -49,7 +51,20 @@ impl SymmetricEntries {
         &self.raw
     }
 
+    /// A compressed-row copy (allocation-free products in a time loop).
+    pub(crate) fn to_rows(&self) -> integrate::structural::sparse::SparseMatrix {
+        let t: Vec<Triplet<usize, usize, f64>> = self
+            .raw
+            .iter()
+            .map(|&(i, j, v)| Triplet::new(i, j, v))
+            .collect();
+        // Indices are in range and merged by construction.
+        faer::sparse::SparseRowMat::try_new_from_triplets(self.n, self.n, &t)
+            .expect("merged entries are valid")
+    }
+
     /// y += s A x.
+    #[cfg(test)]
     pub(crate) fn mul_add(&self, s: f64, x: &[f64], y: &mut [f64]) {
         for &(i, j, v) in &self.raw {
             y[i] += s * v * x[j];
@@ -82,12 +97,23 @@ pub(crate) fn combine(parts: &[(f64, &SymmetricEntries)]) -> Vec<Triplet<usize, 
         .collect()
 }
 
-/// A sparse symmetric positive-definite matrix factorised once as LLᵀ (faer's supernodal or
-/// simplicial sparse Cholesky with an AMD ordering); each solve is two triangular sweeps.
-#[derive(Debug, Clone)]
+/// A sparse symmetric positive-definite matrix factorised once as LLᵀ (faer's simplicial or
+/// supernodal sparse Cholesky with an AMD ordering); each solve is two triangular sweeps in a
+/// workspace allocated once (no allocation per solve).
 pub struct SparseCholesky {
     n: usize,
-    llt: Llt<usize, f64>,
+    symbolic: SymbolicCholesky<usize>,
+    values: Vec<f64>,
+    work: MemBuffer,
+}
+
+impl std::fmt::Debug for SparseCholesky {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SparseCholesky")
+            .field("n", &self.n)
+            .field("factor_entries", &self.values.len())
+            .finish()
+    }
 }
 
 impl SparseCholesky {
@@ -97,26 +123,44 @@ impl SparseCholesky {
         parts: &[(f64, &SymmetricEntries)],
         what: &'static str,
     ) -> Result<Self, BeamError> {
+        let fail = |detail: String| BeamError::Factorisation {
+            matrix: what,
+            detail,
+        };
         let entries = combine(parts);
-        let a = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &entries).map_err(|e| {
-            BeamError::Factorisation {
-                matrix: what,
-                detail: format!("{e:?}"),
-            }
-        })?;
-        let symbolic = SymbolicLlt::try_new(a.symbolic(), Side::Lower).map_err(|e| {
-            BeamError::Factorisation {
-                matrix: what,
-                detail: format!("{e:?}"),
-            }
-        })?;
-        let llt = Llt::try_new_with_symbolic(symbolic, a.as_ref(), Side::Lower).map_err(|e| {
-            BeamError::Factorisation {
-                matrix: what,
-                detail: format!("not positive definite ({e:?})"),
-            }
-        })?;
-        Ok(Self { n, llt })
+        let a = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &entries)
+            .map_err(|e| fail(format!("{e:?}")))?;
+        let symbolic = factorize_symbolic_cholesky(
+            a.symbolic(),
+            Side::Lower,
+            SymmetricOrdering::Amd,
+            Default::default(),
+        )
+        .map_err(|e| fail(format!("{e:?}")))?;
+        let mut values = vec![0.0; symbolic.len_val()];
+        let mut scratch = MemBuffer::try_new(
+            symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
+        )
+        .map_err(|e| fail(format!("{e:?}")))?;
+        symbolic
+            .factorize_numeric_llt::<f64>(
+                &mut values,
+                a.as_ref(),
+                Side::Lower,
+                Default::default(),
+                Par::Seq,
+                MemStack::new(&mut scratch),
+                Default::default(),
+            )
+            .map_err(|e| fail(format!("not positive definite ({e:?})")))?;
+        let work = MemBuffer::try_new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq))
+            .map_err(|e| fail(format!("{e:?}")))?;
+        Ok(Self {
+            n,
+            symbolic,
+            values,
+            work,
+        })
     }
 
     /// Dimension.
@@ -124,11 +168,20 @@ impl SparseCholesky {
         self.n
     }
 
+    /// Number of stored entries of the factor L.
+    pub fn factor_entries(&self) -> usize {
+        self.values.len()
+    }
+
     /// Solve A x = r in place (`r` has length n).
-    pub fn solve_in_place(&self, r: &mut [f64]) {
+    pub fn solve_in_place(&mut self, r: &mut [f64]) {
         let n = self.n;
-        self.llt
-            .solve_in_place(MatMut::from_column_major_slice_mut(r, n, 1));
+        LltRef::new(&self.symbolic, &self.values).solve_in_place_with_conj(
+            Conj::No,
+            MatMut::from_column_major_slice_mut(r, n, 1),
+            Par::Seq,
+            MemStack::new(&mut self.work),
+        );
     }
 }
 
@@ -152,7 +205,7 @@ mod tests {
         a.add(n - 1, n - 1, 10.0);
         a.compress();
         assert_eq!(a.get(3, 4), -1.0);
-        let f = SparseCholesky::factorise(n, &[(1.0, &a)], "test").unwrap();
+        let mut f = SparseCholesky::factorise(n, &[(1.0, &a)], "test").unwrap();
         let r: Vec<f64> = (0..n).map(|i| (i as f64).sin()).collect();
         let mut x = r.clone();
         f.solve_in_place(&mut x);
