@@ -23,8 +23,8 @@ pub struct TrackNewmark<'a> {
     u: Vec<f64>,
     v: Vec<f64>,
     a: Vec<f64>,
-    rhs: Vec<f64>,
     tmp: Vec<f64>,
+    tmp2: Vec<f64>,
     time: f64,
 }
 
@@ -47,15 +47,31 @@ impl<'a> TrackNewmark<'a> {
             u,
             v: vec![0.0; n],
             a: vec![0.0; n],
-            rhs: vec![0.0; n],
             tmp: vec![0.0; n],
+            tmp2: vec![0.0; n],
             time: 0.0,
         })
     }
 
-    /// One step to t + Δt under the load vector `load` at t + Δt (length n).
+    /// One step to t + Δt under the load vector `load` at t + Δt (length n):
+    /// [`Self::predict`] then [`Self::advance_to`].
     pub fn step(&mut self, load: &[f64]) -> Result<(), BeamError> {
+        let mut u = std::mem::take(&mut self.tmp2);
+        u.resize(self.u.len(), 0.0);
+        let result = self
+            .predict(load, &mut u)
+            .and_then(|()| self.advance_to(&u));
+        self.tmp2 = u;
+        result
+    }
+
+    /// The displacement at t + Δt under `load` (length n) into `out`, without advancing:
+    /// u = A⁻¹(f + M(a₀u + a₂v + a₃a) + C(a₁u + a₄v + a₅a)). The response is linear in the
+    /// load, so a coupling adds F · A⁻¹b for a contact force F on the load vector b
+    /// ([`Self::solve_step_matrix`]).
+    pub fn predict(&mut self, load: &[f64], out: &mut [f64]) -> Result<(), BeamError> {
         crate::modal::check_len("load", load.len(), self.u.len())?;
+        crate::modal::check_len("out", out.len(), self.u.len())?;
         let dt = self.dt;
         let (a0, a2, a3) = (1.0 / (BETA * dt * dt), 1.0 / (BETA * dt), 0.5 / BETA - 1.0);
         let (a1, a4, a5) = (
@@ -63,20 +79,32 @@ impl<'a> TrackNewmark<'a> {
             GAMMA / BETA - 1.0,
             dt * (GAMMA / (2.0 * BETA) - 1.0),
         );
-        self.rhs.copy_from_slice(load);
-        // M (a0 u + a2 v + a3 a)
+        out.copy_from_slice(load);
         for i in 0..self.u.len() {
             self.tmp[i] = a0 * self.u[i] + a2 * self.v[i] + a3 * self.a[i];
         }
-        sparse_mul_add(self.mass.as_ref(), 1.0, &self.tmp, &mut self.rhs);
-        // C (a1 u + a4 v + a5 a)
+        sparse_mul_add(self.mass.as_ref(), 1.0, &self.tmp, out);
         for i in 0..self.u.len() {
             self.tmp[i] = a1 * self.u[i] + a4 * self.v[i] + a5 * self.a[i];
         }
-        sparse_mul_add(self.damping.as_ref(), 1.0, &self.tmp, &mut self.rhs);
-        self.solver.solve_in_place(&mut self.rhs);
-        for i in 0..self.u.len() {
-            let un = self.rhs[i];
+        sparse_mul_add(self.damping.as_ref(), 1.0, &self.tmp, out);
+        self.solver.solve_in_place(out);
+        Ok(())
+    }
+
+    /// r ← A⁻¹ r with the step matrix A = K + γ/(βΔt) C + 1/(βΔt²) M.
+    pub fn solve_step_matrix(&mut self, r: &mut [f64]) -> Result<(), BeamError> {
+        crate::modal::check_len("r", r.len(), self.u.len())?;
+        self.solver.solve_in_place(r);
+        Ok(())
+    }
+
+    /// Accept `u_next` as the displacement at t + Δt (Newmark's corrector for a and v).
+    pub fn advance_to(&mut self, u_next: &[f64]) -> Result<(), BeamError> {
+        crate::modal::check_len("u_next", u_next.len(), self.u.len())?;
+        let dt = self.dt;
+        let (a0, a2, a3) = (1.0 / (BETA * dt * dt), 1.0 / (BETA * dt), 0.5 / BETA - 1.0);
+        for (i, &un) in u_next.iter().enumerate() {
             let an = a0 * (un - self.u[i]) - a2 * self.v[i] - a3 * self.a[i];
             self.v[i] += dt * ((1.0 - GAMMA) * self.a[i] + GAMMA * an);
             self.a[i] = an;
