@@ -78,14 +78,18 @@ pub fn fryba_speed(alpha: f64) -> Result<f64, BeamError> {
     speed_for_parameter(&fryba_bridge()?, alpha)
 }
 
-/// The ballasted high-speed track (60E1 on the preset chain, 0.6 m, 4 elements per bay) over
-/// `approach` m of embankment, Frýba's 25 m bridge (20 modes, 2 % damping) and `approach` m of
-/// exit: the track of the performance target of the track model.
-pub fn ballasted_track_on_fryba_bridge(approach: f64) -> Result<crate::track::Track, BeamError> {
+/// The ballasted high-speed track (60E1 on the preset chain, 0.6 m, `elements_per_bay` rail
+/// elements per bay) over `approach` m of embankment, Frýba's 25 m bridge (20 modes, 2 %
+/// damping) and `approach` m of exit: the track of the performance target of the track model.
+pub fn ballasted_track_on_fryba_bridge(
+    approach: f64,
+    elements_per_bay: usize,
+) -> Result<crate::track::Track, BeamError> {
     use crate::track::{RailSection, SupportStack, Track, TrackLayout, TrackSupports};
     let bridge = fryba_bridge()?;
     let modes = AnalyticBeam::new(Support::SimplySupported, bridge, 20)?;
-    let layout = TrackLayout::new(approach, bridge.length, approach, 0.6)?;
+    let layout = TrackLayout::new(approach, bridge.length, approach, 0.6)?
+        .with_elements_per_bay(elements_per_bay)?;
     let supports = TrackSupports::uniform(SupportStack::ballasted_high_speed());
     Track::on_bridge(
         RailSection::e60(),
