@@ -381,3 +381,68 @@ fn stiff_track_on_bridge_converges_to_bare_bridge() {
         );
     }
 }
+
+/// Static equilibrium of the support chains (the force outputs): under a static load F on the
+/// ballasted preset on ground every chain carries the same force through all its springs
+/// (series springs, no inertia), the pad forces sum to F, and the chain nearest the load is the
+/// most loaded. On a bridge with a direct pad, the rail–bridge relative displacement over each
+/// sleeper equals its pad force / pad stiffness. Tolerances: 1e-9 relative (rounding of a
+/// sparse solve with condition number ~1e8).
+#[test]
+fn chain_forces_are_in_static_equilibrium() {
+    let rail = RailSection::e60();
+    let track = preset_track(rail, 40, 4, 1.0);
+    let force = 100e3;
+    let x = 12.3; // over sleeper 20
+    let mut load = vec![0.0; track.n_dofs()];
+    track.add_point_force(x, force, &mut load).unwrap();
+    let u = track.static_solution(&load).unwrap();
+    let v = vec![0.0; track.n_dofs()];
+    let mut total = 0.0;
+    let mut most = (0, 0.0f64);
+    for s in 0..track.sleepers().len() {
+        let f = track.chain_forces(s, &u, &v);
+        assert_eq!(f.len(), 3);
+        for fi in &f[1..] {
+            assert!((fi - f[0]).abs() <= 1e-9 * force, "{f:?}");
+        }
+        total += f[0];
+        if f[0] > most.1 {
+            most = (s, f[0]);
+        }
+    }
+    assert!((total - force).abs() < 1e-9 * force, "{total}");
+    assert_eq!(most.0, track.sleeper_near(x));
+    assert_eq!(track.sleeper_near(x), 20);
+
+    let span = 25.0;
+    let modes = AnalyticBeam::new(
+        Support::SimplySupported,
+        UniformBeam::new(span, 2.87e9 * 2.90, 2303.0).unwrap(),
+        10,
+    )
+    .unwrap();
+    let k_pad = 2e8;
+    let stack = SupportStack::direct(SpringDamper::new(k_pad, 1e4).unwrap()).unwrap();
+    let layout = TrackLayout::new(6.0, span, 6.0, 0.625).unwrap();
+    let track = Track::on_bridge(
+        rail,
+        layout,
+        &TrackSupports::uniform(stack),
+        &modes,
+        &ModalDamping::Uniform(0.02),
+    )
+    .unwrap();
+    let mut load = vec![0.0; track.n_dofs()];
+    track.add_point_force(6.0 + 10.0, force, &mut load).unwrap();
+    let u = track.static_solution(&load).unwrap();
+    let v = vec![0.0; track.n_dofs()];
+    let mut total = 0.0;
+    for s in 0..track.sleepers().len() {
+        let f = track.chain_forces(s, &u, &v)[0];
+        let rel = track.rail_to_foundation(s, &u);
+        assert!((rel - f / k_pad).abs() < 1e-9 * force / k_pad);
+        total += f;
+    }
+    assert!((total - force).abs() < 1e-9 * force);
+}
