@@ -80,14 +80,17 @@ fn today() -> f64 {
     peak
 }
 
-/// The quarter car on `track` (a track on the bridge modes of [`basis`], the bridge starting
-/// at x = `approach`), starting at x = `approach` − `lead_in` in static equilibrium; the peak
-/// midspan deflection while the wheel is on the span.
-fn with_track(track: &Track, lead_in: f64) -> f64 {
+/// The quarter car on `track` at `speed`, starting at x = `x0` in static equilibrium, for
+/// `steps` steps of [`DT`]; after each step `observe(x_wheel, track state, contact force)`.
+fn run_quarter_car(
+    track: &Track,
+    x0: f64,
+    speed: f64,
+    steps: usize,
+    mut observe: impl FnMut(f64, &[f64], f64),
+) {
     let c_h = DEFAULT_GEOMETRY.hertz().unwrap().coefficient();
-    let approach = track.layout().approach();
     let weight = (M_W + M_B) * GRAVITY;
-    let x0 = approach - lead_in;
     let n = track.n_dofs();
     // Static start: the wheel load on the rail at x0.
     let mut load = vec![0.0; n];
@@ -108,21 +111,11 @@ fn with_track(track: &Track, lead_in: f64) -> f64 {
         [a_v[1][1] / det, -a_v[0][1] / det],
         [-a_v[1][0] / det, a_v[0][0] / det],
     ];
-    let mut phi = vec![0.0; MODES];
-    basis(bridge_mass(
-        track.sleepers()[0].stack.masses(),
-        track.layout().sleeper_spacing(),
-    ))
-    .eval_all(0.5 * L, Derivative::Shape, &mut phi)
-    .unwrap();
-    let midspan = |u: &[f64]| -> f64 { (0..MODES).map(|j| phi[j] * u[track.modal_dof(j)]).sum() };
     let zero = vec![0.0; n];
     let (mut u0, mut g) = (vec![0.0; n], vec![0.0; n]);
     let mut force = weight;
-    let mut peak = 0.0f64;
-    let steps = ((lead_in + L) / SPEED / DT).round() as usize;
     for _ in 0..steps {
-        let x = x0 + SPEED * (nm.time() + DT);
+        let x = x0 + speed * (nm.time() + DT);
         let p = track.rail_point(x).unwrap();
         nm.predict(&zero, &mut u0).unwrap();
         g.fill(0.0);
@@ -180,10 +173,30 @@ fn with_track(track: &Track, lead_in: f64) -> f64 {
         vw += 0.5 * DT * (aw + aw1);
         vb += 0.5 * DT * (ab + ab1);
         (zw, zb, aw, ab) = (zw1, zb1, aw1, ab1);
-        if x >= approach {
-            peak = peak.max(midspan(nm.displacement()));
-        }
+        observe(x, nm.displacement(), force);
     }
+}
+
+/// The quarter car on `track` (a track on the bridge modes of [`basis`], the bridge starting
+/// at x = `approach`), starting at x = `approach` − `lead_in` in static equilibrium; the peak
+/// midspan deflection while the wheel is on the span.
+fn with_track(track: &Track, lead_in: f64) -> f64 {
+    let approach = track.layout().approach();
+    let mut phi = vec![0.0; MODES];
+    basis(bridge_mass(
+        track.sleepers()[0].stack.masses(),
+        track.layout().sleeper_spacing(),
+    ))
+    .eval_all(0.5 * L, Derivative::Shape, &mut phi)
+    .unwrap();
+    let midspan = |u: &[f64]| -> f64 { (0..MODES).map(|j| phi[j] * u[track.modal_dof(j)]).sum() };
+    let steps = ((lead_in + L) / SPEED / DT).round() as usize;
+    let mut peak = 0.0f64;
+    run_quarter_car(track, approach - lead_in, SPEED, steps, |x, u, _| {
+        if x >= approach {
+            peak = peak.max(midspan(u));
+        }
+    });
     peak
 }
 
@@ -249,4 +262,56 @@ fn ballasted_track_with_embankments() {
         rel(p60)
     );
     assert!((p60 / p20 - 1.0).abs() < 1e-4);
+}
+
+/// Largest line of the Hann-windowed spectrum of `series` (sampled every [`DT`]) between `lo`
+/// and `hi` Hz on a 0.25 Hz grid.
+fn spectral_peak(series: &[f64], lo: f64, hi: f64) -> (f64, f64) {
+    let n = series.len();
+    let mean = series.iter().sum::<f64>() / n as f64;
+    let amplitude = |f: f64| {
+        let (mut re, mut im) = (0.0, 0.0);
+        for (i, &s) in series.iter().enumerate() {
+            let hann = 0.5 - 0.5 * (std::f64::consts::TAU * i as f64 / (n - 1) as f64).cos();
+            let phase = -std::f64::consts::TAU * f * i as f64 * DT;
+            re += (s - mean) * hann * phase.cos();
+            im += (s - mean) * hann * phase.sin();
+        }
+        (re * re + im * im).sqrt()
+    };
+    let steps = ((hi - lo) / 0.25) as usize;
+    (0..=steps)
+        .map(|i| lo + 0.25 * i as f64)
+        .map(|f| (f, amplitude(f)))
+        .fold((lo, 0.0), |m, p| if p.1 > m.1 { p } else { m })
+}
+
+/// The sleeper-passing frequency in the wheel–rail contact force: the quarter car at 50 m/s on
+/// the ballasted preset on rigid ground (sleepers 0.625 m apart, so v/d = 80 Hz), 1.2 s; the
+/// largest line of the contact-force spectrum between 20 and 300 Hz (after a 0.2 s start-up,
+/// resolution 1/1.0 s) lies within 1 Hz of v/d. Measured: 80.00 Hz; the force varies between
+/// 61.8 and 62.8 kN around the static 62.3 kN.
+#[test]
+fn contact_force_shows_the_sleeper_passing_frequency() {
+    let d = 0.625;
+    let speed = 50.0;
+    let layout = TrackLayout::new(40.0, 0.0, 40.0, d).unwrap();
+    let track = Track::on_ground(
+        RailSection::e60(),
+        layout,
+        &TrackSupports::uniform(SupportStack::ballasted_high_speed()),
+    )
+    .unwrap();
+    let steps = (1.2 / DT) as usize;
+    let skip = (0.2 / DT) as usize;
+    let mut forces = Vec::with_capacity(steps);
+    run_quarter_car(&track, 5.0, speed, steps, |_, _, f| forces.push(f));
+    let (f_peak, amplitude) = spectral_peak(&forces[skip..], 20.0, 300.0);
+    println!(
+        "contact-force spectrum: peak {f_peak:.2} Hz (v/d = {:.2} Hz), amplitude {amplitude:.3e}; force range {:.1} … {:.1} kN",
+        speed / d,
+        forces[skip..].iter().cloned().fold(f64::INFINITY, f64::min) / 1e3,
+        forces[skip..].iter().cloned().fold(0.0, f64::max) / 1e3
+    );
+    assert!((f_peak - speed / d).abs() <= 1.0);
 }
