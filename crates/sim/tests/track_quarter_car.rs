@@ -7,8 +7,9 @@
 //! track + bridge (`beam::track::TrackNewmark`, the step matrix factorised once) and for the
 //! 2-DOF vehicle; the Hertz force F = C_H max(δ, 0)^{3/2}, δ = z_w − u_rail(x_w), solved exactly
 //! each step from the linear responses u = u₀ + F A⁻¹b (b the Hermite load vector of the wheel
-//! on the rail, references.md §D4.2: the one-wheel Sherman–Morrison step), so each step costs
-//! two sparse triangular solves and a scalar equation.
+//! on the rail, references.md §D4.2: the one-wheel Sherman–Morrison step) in the split form of
+//! `TrackNewmark::predict_forward`/`forward_point`/`backward`, so each step costs one forward
+//! and one backward sweep of the factor, a short sparse forward sweep and a scalar equation.
 
 use beam::track::{
     RailSection, SpringDamper, SupportStack, Track, TrackLayout, TrackNewmark, TrackSupports,
@@ -117,12 +118,11 @@ fn run_quarter_car(
     for _ in 0..steps {
         let x = x0 + speed * (nm.time() + DT);
         let p = track.rail_point(x).unwrap();
-        nm.predict(&zero, &mut u0).unwrap();
-        g.fill(0.0);
-        for a in 0..4 {
-            g[p.dofs[a]] += p.weights[a];
-        }
-        nm.solve_step_matrix(&mut g).unwrap();
+        // One solve per step: z = L⁻¹P r, y = L⁻¹P b (sparse), then one backward sweep.
+        nm.predict_forward(&zero, &mut u0).unwrap();
+        nm.forward_point(&p, &mut g).unwrap();
+        let rail0: f64 = g.iter().zip(&u0).map(|(a, b)| a * b).sum();
+        let c_rail: f64 = g.iter().map(|a| a * a).sum();
         // Vehicle predictor (no contact force): gravity + the Newmark history terms.
         let hist = |m: f64, z: f64, v: f64, a: f64| m * (a0 * z + 4.0 / DT * v + a);
         let r = [
@@ -132,8 +132,8 @@ fn run_quarter_car(
         let zw0 = inv[0][0] * r[0] + inv[0][1] * r[1];
         let zb0 = inv[1][0] * r[0] + inv[1][1] * r[1];
         // δ(F) = δ0 − c F.
-        let delta0 = zw0 - p.value(&u0);
-        let c = inv[0][0] + p.value(&g);
+        let delta0 = zw0 - rail0;
+        let c = inv[0][0] + c_rail;
         force = if delta0 <= 0.0 {
             0.0
         } else {
@@ -165,6 +165,7 @@ fn run_quarter_car(
         for i in 0..n {
             u0[i] += force * g[i];
         }
+        nm.backward(&mut u0).unwrap();
         nm.advance_to(&u0).unwrap();
         let zw1 = zw0 - force * inv[0][0];
         let zb1 = zb0 - force * inv[1][0];

@@ -6,7 +6,7 @@ use integrate::structural::sparse::{SparseMatrix, sparse_mul_add};
 
 use crate::error::{BeamError, positive};
 
-use super::model::Track;
+use super::model::{RailPoint, Track};
 use super::sparse::SparseCholesky;
 
 const BETA: f64 = 0.25;
@@ -72,6 +72,13 @@ impl<'a> TrackNewmark<'a> {
     pub fn predict(&mut self, load: &[f64], out: &mut [f64]) -> Result<(), BeamError> {
         crate::modal::check_len("load", load.len(), self.u.len())?;
         crate::modal::check_len("out", out.len(), self.u.len())?;
+        self.history(load, out);
+        self.solver.solve_in_place(out);
+        Ok(())
+    }
+
+    /// out = f + M(a₀u + a₂v + a₃a) + C(a₁u + a₄v + a₅a).
+    fn history(&mut self, load: &[f64], out: &mut [f64]) {
         let dt = self.dt;
         let (a0, a2, a3) = (1.0 / (BETA * dt * dt), 1.0 / (BETA * dt), 0.5 / BETA - 1.0);
         let (a1, a4, a5) = (
@@ -88,7 +95,33 @@ impl<'a> TrackNewmark<'a> {
             self.tmp[i] = a1 * self.u[i] + a4 * self.v[i] + a5 * self.a[i];
         }
         sparse_mul_add(self.damping.as_ref(), 1.0, &self.tmp, out);
-        self.solver.solve_in_place(out);
+    }
+
+    /// [`Self::predict`]'s right-hand side after the forward half of the solve only:
+    /// z = L⁻¹P(f + history) (A = PᵀLLᵀP). With y = [`Self::forward_point`] of a contact at
+    /// the rail point p, the rail displacement there under a contact force F is
+    /// yᵀz + F yᵀy, and [`Self::backward`] of z + F y is the displacement at t + Δt: one solve
+    /// per coupled step (references.md §D4.2, §D5.2).
+    pub fn predict_forward(&mut self, load: &[f64], out: &mut [f64]) -> Result<(), BeamError> {
+        crate::modal::check_len("load", load.len(), self.u.len())?;
+        crate::modal::check_len("out", out.len(), self.u.len())?;
+        self.history(load, out);
+        self.solver.forward(out);
+        Ok(())
+    }
+
+    /// y = L⁻¹P b for the consistent load vector b of a unit force at the rail point `p`.
+    pub fn forward_point(&self, p: &RailPoint, out: &mut [f64]) -> Result<(), BeamError> {
+        crate::modal::check_len("out", out.len(), self.u.len())?;
+        let b: [(usize, f64); 4] = std::array::from_fn(|a| (p.dofs[a], p.weights[a]));
+        self.solver.forward_sparse(&b, out);
+        Ok(())
+    }
+
+    /// z ← PᵀL⁻ᵀz: the backward half of the step-matrix solve.
+    pub fn backward(&mut self, z: &mut [f64]) -> Result<(), BeamError> {
+        crate::modal::check_len("z", z.len(), self.u.len())?;
+        self.solver.backward(z);
         Ok(())
     }
 
