@@ -137,6 +137,15 @@ pub enum BeamError {
         /// Highest circular frequency retained \[rad/s\].
         omega_max: f64,
     },
+    /// A sparse factorisation failed (a track step matrix not positive definite, or an
+    /// invalid pattern).
+    #[error("factorisation of the {matrix} failed: {detail}")]
+    Factorisation {
+        /// Which matrix.
+        matrix: &'static str,
+        /// What faer reported.
+        detail: String,
+    },
     /// More modes were requested than the discrete model has degrees of freedom.
     #[error(
         "requested {requested} modes but the model has only {available} free degrees of freedom"

@@ -9,6 +9,8 @@
 //! * [`moving`]: moving forces and axle trains, time histories and amplification factors;
 //! * [`closed_form`]: Frýba's series for a moving force on a simply supported beam;
 //! * [`sdof`]: the exact piecewise-linear (Nigam–Jennings-type) modal step;
+//! * [`track`]: the railway track (rail on discrete pads, sleepers and ballast) over approach,
+//!   bridge and exit;
 //! * [`bench`](mod@bench): fixed workloads for the benchmark driver.
 //!
 //! ```
@@ -44,6 +46,7 @@ pub mod moving;
 pub mod passage;
 pub mod quadrature;
 pub mod sdof;
+pub mod track;
 
 pub use analytic::{AnalyticBeam, Support, UniformBeam};
 pub use damping::ModalDamping;

@@ -175,6 +175,34 @@ pub fn beam() -> Result<()> {
         ),
         1e3 * t
     );
+    // The track model (beam::track): Newmark step of the track + bridge under a moving force,
+    // per step (the set-up with its factorisation timed separately and subtracted).
+    let steps = 2000;
+    for (approach, per_bay, split) in [
+        (15.0, 4, false),
+        (30.0, 4, false),
+        (60.0, 4, false),
+        (120.0, 4, false),
+        (60.0, 2, false),
+        (60.0, 2, true),
+    ] {
+        let track = work::ballasted_track_on_fryba_bridge(approach, per_bay).map_err(e)?;
+        let setup = best_of(3, || {
+            checksum += work::track_moving_force(&track, 1e-4, 0, split).unwrap_or(f64::NAN)
+        });
+        let total = best_of(3, || {
+            checksum += work::track_moving_force(&track, 1e-4, steps, split).unwrap_or(f64::NAN)
+        });
+        println!(
+            "{:<58} {:>12.2}",
+            format!(
+                "track {approach}+25+{approach} m, {per_bay} el./bay, {} DOFs{}: µs/step",
+                track.n_dofs(),
+                if split { ", split" } else { "" }
+            ),
+            1e6 * (total - setup) / steps as f64
+        );
+    }
     if !checksum.is_finite() {
         return Err(anyhow!("a benchmark workload failed"));
     }

@@ -18,7 +18,7 @@
 
 mod eigen;
 mod model;
-mod shape;
+pub(crate) mod shape;
 mod subspace;
 mod supports;
 

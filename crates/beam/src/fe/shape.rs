@@ -14,7 +14,7 @@ pub(super) struct Mesh {
 
 /// Hermite cubic shape functions (and derivative `d`) at local ξ ∈ [0, 1] of an element of length h,
 /// for DOFs (w₁, θ₁, w₂, θ₂).
-pub(super) fn hermite(xi: f64, h: f64, d: Derivative) -> [f64; 4] {
+pub(crate) fn hermite(xi: f64, h: f64, d: Derivative) -> [f64; 4] {
     let (x2, x3) = (xi * xi, xi * xi * xi);
     match d {
         Derivative::Shape => [
