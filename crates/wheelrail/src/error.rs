@@ -37,3 +37,21 @@ pub enum WheelRailError {
         source: halfspace::ContactError,
     },
 }
+/// `Ok` when `value` is finite and within [`lo`, `hi`].
+pub(crate) fn in_range(
+    name: &'static str,
+    value: f64,
+    lo: f64,
+    hi: f64,
+    allowed: &'static str,
+) -> Result<(), WheelRailError> {
+    if value.is_finite() && value >= lo && value <= hi {
+        Ok(())
+    } else {
+        Err(WheelRailError::InvalidParameter {
+            name,
+            value,
+            allowed,
+        })
+    }
+}
