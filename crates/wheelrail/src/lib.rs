@@ -7,13 +7,17 @@
 //! - [`contact_point`]: the rigid contact candidates (local minima of the vertical distance);
 //! - [`wheelset`]: gauge, inclination, back-to-back distance, lateral shift and roll; the
 //!   contact of both wheels and the rolling radius difference;
-//! - [`conicity`]: equivalent conicity from Δr(y).
+//! - [`conicity`]: equivalent conicity from Δr(y);
+//! - [`gap`]: the undeformed gap h(x, t) in a candidate's contact plane;
+//! - [`patches`]: the candidates grouped into patches and solved with the half-space solver.
 //!
 //! Units are SI (metres). No file I/O: parsers take text, the CLI reads files.
 
 pub mod conicity;
 pub mod contact_point;
 pub mod error;
+pub mod gap;
+pub mod patches;
 pub mod placed;
 pub mod profile;
 pub mod rail_60e1;
@@ -23,6 +27,8 @@ pub mod wheelset;
 pub use conicity::equivalent_conicity;
 pub use contact_point::ContactCandidate;
 pub use error::WheelRailError;
+pub use gap::{ContactPlane, Side};
+pub use patches::{Patch, PatchOptions, WheelLoad, WheelSolution, solve_wheel};
 pub use placed::PlacedProfile;
 pub use profile::{Jump, Profile, Segment};
 pub use rail_60e1::rail_60e1;
