@@ -12,7 +12,7 @@ use crate::error::WheelRailError;
 use crate::placed::PlacedProfile;
 
 /// Lateral sampling step of the search \[m\] before each minimum is refined.
-pub const SEARCH_STEP: f64 = 5e-5;
+pub const SEARCH_STEP: f64 = 1e-4;
 
 /// Two neighbouring minima are distinct candidates only when the gap between them rises by
 /// more than this above the larger of the two \[m\]; otherwise they are one conformal zone

@@ -1,8 +1,8 @@
 //! Wheel and rail profiles and the rigid wheel–rail contact geometry (references.md §W).
 //!
 //! - [`profile`]: piecewise profiles z(y) of lines, arcs, polynomials and cubic pieces;
-//! - [`s1002`]: the S1002 wheel (EN 13715) from its published sections;
-//! - [`rail_60e1`]: the 60E1 rail head (EN 13674-1) from its published drawing dimensions;
+//! - [`s1002`](mod@s1002): the S1002 wheel (EN 13715) from its published sections;
+//! - [`rail_60e1`](mod@rail_60e1): the 60E1 rail head (EN 13674-1) from its published drawing dimensions;
 //! - [`placed`]: a profile rotated and translated into the track cross-section;
 //! - [`contact_point`]: the rigid contact candidates (local minima of the vertical distance);
 //! - [`wheelset`]: gauge, inclination, back-to-back distance, lateral shift and roll; the

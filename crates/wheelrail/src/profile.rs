@@ -3,7 +3,7 @@
 //!
 //! A profile is a function z(y) \[m\] of the lateral coordinate y \[m\] on a closed interval,
 //! made of segments that join at breakpoints. What z means (rail height upwards, wheel
-//! radius increase) is up to the profile's owner ([`crate::s1002`], [`crate::rail_60e1`]).
+//! radius increase) is up to the profile's owner ([`crate::s1002()`], [`crate::rail_60e1()`]).
 
 use crate::error::WheelRailError;
 
