@@ -2,6 +2,8 @@
 //!
 //! - [`profile`]: piecewise profiles z(y) of lines, arcs, polynomials and cubic pieces;
 //! - [`s1002`](mod@s1002): the S1002 wheel (EN 13715) from its published sections;
+//! - [`measured`]: profiles from measured points (text, CSV, SIMPACK/CONTACT point blocks),
+//!   smoothing spline;
 //! - [`rail_60e1`](mod@rail_60e1): the 60E1 rail head (EN 13674-1) from its published drawing dimensions;
 //! - [`placed`]: a profile rotated and translated into the track cross-section;
 //! - [`contact_point`]: the rigid contact candidates (local minima of the vertical distance);
@@ -17,6 +19,7 @@ pub mod conicity;
 pub mod contact_point;
 pub mod error;
 pub mod gap;
+pub mod measured;
 pub mod patches;
 pub mod placed;
 pub mod profile;
@@ -28,6 +31,7 @@ pub use conicity::equivalent_conicity;
 pub use contact_point::ContactCandidate;
 pub use error::WheelRailError;
 pub use gap::{ContactPlane, Side};
+pub use measured::{ProfileKind, parse_profile};
 pub use patches::{Patch, PatchOptions, WheelLoad, WheelSolution, solve_wheel};
 pub use placed::PlacedProfile;
 pub use profile::{Jump, Profile, Segment};

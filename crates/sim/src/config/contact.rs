@@ -125,6 +125,8 @@ pub struct GapSpec {
     pub wheel_radius: Option<f64>,
     /// `kind = "wheel_rail"`: prescribed roll angle \[rad\] (default: both wheels on their rails).
     pub roll: Option<f64>,
+    /// `kind = "wheel_rail"`: smoothing parameter λ \[m³\] of measured profiles (default 0).
+    pub smoothing: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -469,6 +471,7 @@ fn only_keys(spec: &GapSpec, allowed: &[&str]) -> Result<(), ConfigError> {
         ("lateral_shift", spec.lateral_shift.is_some()),
         ("wheel_radius", spec.wheel_radius.is_some()),
         ("roll", spec.roll.is_some()),
+        ("smoothing", spec.smoothing.is_some()),
     ];
     for (key, is_set) in present {
         if is_set && !allowed.contains(&key) {

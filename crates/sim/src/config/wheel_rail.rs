@@ -10,7 +10,7 @@
 //! nu = 0.3
 //! [gap]
 //! kind = "wheel_rail"
-//! wheel = "S1002"          # built-in name
+//! wheel = "S1002"          # built-in name, or a profile file (mm; see docs/profiles.md)
 //! rail = "60E1"
 //! inclination = "1:40"     # "1:20", "1:40", "0" or the tangent as a number
 //! gauge = 1.435            # m
@@ -48,6 +48,7 @@ const ROLL: Range = Range::symmetric(0.05, "rad");
 const INCLINATION: Range = Range::closed(0.0, 0.05, "(tangent of the cant angle)");
 const FORCE: Range = Range::closed(1.0, 1e7, "N");
 const APPROACH: Range = Range::closed(1e-9, 5e-3, "m");
+const SMOOTHING: Range = Range::closed(0.0, 1.0, "m³");
 const PATCH_ELEMENTS: Range = Range::closed(8.0, 512.0, "elements");
 
 /// A validated wheel–rail case.
@@ -87,17 +88,34 @@ fn profile(
     value: Option<&str>,
     default: &str,
     builtin: &[&str],
-    _base: &Path,
+    base: &Path,
+    smoothing: f64,
 ) -> Result<Profile, ConfigError> {
     let name = value.unwrap_or(default);
     match name.to_ascii_uppercase().as_str() {
-        "S1002" if builtin.contains(&"S1002") => Ok(wheelrail::s1002()),
-        "60E1" | "UIC60" if builtin.contains(&"60E1") => Ok(wheelrail::rail_60e1()),
-        _ => bail!(
-            "[gap] `{key}` = \"{name}\": not a built-in profile (allowed: {})",
-            builtin.join(", ")
-        ),
+        "S1002" if builtin.contains(&"S1002") => return Ok(wheelrail::s1002()),
+        "60E1" | "UIC60" if builtin.contains(&"60E1") => return Ok(wheelrail::rail_60e1()),
+        _ => {}
     }
+    let path = base.join(name);
+    if !path.is_file() {
+        bail!(
+            "[gap] `{key}` = \"{name}\": neither a built-in profile (allowed: {}) nor a profile file ({} does not exist)",
+            builtin.join(", "),
+            path.display()
+        );
+    }
+    let text = std::fs::read_to_string(&path).map_err(|source| ConfigError::Io {
+        context: format!("[gap] cannot read `{key}` {}", path.display()),
+        source,
+    })?;
+    let kind = if key == "wheel" {
+        wheelrail::ProfileKind::Wheel
+    } else {
+        wheelrail::ProfileKind::Rail
+    };
+    wheelrail::parse_profile(name, &text, kind, 1e-3, smoothing)
+        .map_err(|e| invalid!("[gap] `{key}` = \"{name}\" ({}): {e}", path.display()))
 }
 
 /// The inclination key: "1:N" (N ≥ 20), "0", or the tangent.
@@ -173,8 +191,16 @@ pub fn build(case: &ContactCase, base: &Path) -> Result<WheelRailConfig, ConfigE
         );
     }
     let material = checked_material(&case.body1, &case.body2)?;
-    let wheel = profile("wheel", g.wheel.as_deref(), "S1002", WHEELS, base)?;
-    let rail = profile("rail", g.rail.as_deref(), "60E1", RAILS, base)?;
+    let smoothing = SMOOTHING.check("gap.smoothing", g.smoothing.unwrap_or(0.0))?;
+    let wheel = profile(
+        "wheel",
+        g.wheel.as_deref(),
+        "S1002",
+        WHEELS,
+        base,
+        smoothing,
+    )?;
+    let rail = profile("rail", g.rail.as_deref(), "60E1", RAILS, base, smoothing)?;
     let (incl, inclination_label) = inclination(g.inclination.as_ref())?;
     let defaults = WheelsetParams::default();
     let params = WheelsetParams {
