@@ -11,7 +11,8 @@
 //!   contact of both wheels and the rolling radius difference;
 //! - [`conicity`]: equivalent conicity from Δr(y);
 //! - [`gap`]: the undeformed gap h(x, t) in a candidate's contact plane;
-//! - [`patches`]: the candidates grouped into patches and solved with the half-space solver.
+//! - [`patches`]: the candidates grouped into patches and solved with the half-space solver;
+//! - [`law`]: one wheel's contact as a force law F(δ) of its vertical approach.
 //!
 //! Units are SI (metres). No file I/O: parsers take text, the CLI reads files.
 
@@ -19,6 +20,7 @@ pub mod conicity;
 pub mod contact_point;
 pub mod error;
 pub mod gap;
+pub mod law;
 pub mod measured;
 pub mod patches;
 pub mod placed;
@@ -31,6 +33,7 @@ pub use conicity::equivalent_conicity;
 pub use contact_point::ContactCandidate;
 pub use error::WheelRailError;
 pub use gap::{ContactPlane, Side};
+pub use law::ProfileLaw;
 pub use measured::{ProfileKind, parse_profile};
 pub use patches::{Patch, PatchOptions, WheelLoad, WheelSolution, solve_wheel};
 pub use placed::PlacedProfile;

@@ -247,3 +247,63 @@ fn two_patches_far_apart_are_two_hertz_contacts_and_close_ones_interact() {
         "{extra} vs {estimate}"
     );
 }
+
+/// The wheel's contact as a force law F(δ) of the vertical approach (cone on a circular head,
+/// 64 × 64 elements per patch): F(δ) = cos γ · C (δ cos γ)^{3/2} with Hertz's C for
+/// A = cos γ/(2 r_c), B = 1/(2R); the tangent 1.5 F/δ; the energy 0.4 F δ; and
+/// static_approach inverts F. Tolerances: 5e-4 on F and 1e-3 on the energy (the grid's
+/// discretisation; measured ≈ 1e-4); 1e-2 on the tangent, which is the derivative of the
+/// discrete problem with its active set held (measured ≈ 3e-3 at 64²).
+#[test]
+fn profile_law_is_hertz_for_ideal_profiles() {
+    use halfspace::law::ContactLaw;
+    let tan_g: f64 = 1.0 / 20.0;
+    let r = 0.3;
+    let ws = ideal(tan_g, r);
+    let material = Material::identical(210e9, 0.3).unwrap();
+    let options = PatchOptions {
+        nx: 64,
+        ny: 64,
+        ..PatchOptions::default()
+    };
+    let mut law = wheelrail::ProfileLaw::new(ws, 0.0, Side::Right, material, options).unwrap();
+    let gamma = tan_g.atan();
+    let rc = law.rigid_contact().right.rolling_radius();
+    let unit = Hertz::elliptic(
+        gamma.cos() / (2.0 * rc),
+        1.0 / (2.0 * r),
+        material.e_star,
+        1.0,
+    )
+    .unwrap();
+    // F_n = C δ_n^{3/2} with C = 1/δ(1 N)^{3/2}.
+    let c = unit.approach.powf(-1.5);
+    for delta in [20e-6, 60e-6, 120e-6] {
+        let out = law.evaluate(delta, &[], &mut [], true).unwrap();
+        let want = gamma.cos() * c * (delta * gamma.cos()).powf(1.5);
+        assert!(
+            (out.force / want - 1.0).abs() < 5e-4,
+            "F({delta}) = {} vs {want}",
+            out.force
+        );
+        let ks = out.stiffness / (1.5 * out.force / delta) - 1.0;
+        let es = out.energy / (0.4 * out.force * delta) - 1.0;
+        println!(
+            "δ = {delta:e}: F {:e} ({:+.2e}), tangent {ks:+.2e}, energy {es:+.2e}",
+            out.force,
+            out.force / want - 1.0
+        );
+        assert!(ks.abs() < 1e-2, "{ks}");
+        assert!((out.energy / (0.4 * out.force * delta) - 1.0).abs() < 1e-3);
+        let back = law.static_approach(out.force).unwrap();
+        assert!((back / delta - 1.0).abs() < 1e-5, "{back} vs {delta}");
+    }
+    assert_eq!(law.evaluate(-1e-6, &[], &mut [], true).unwrap().force, 0.0);
+    // A column gap correction c(0) shifts the approach.
+    let shifted = law
+        .evaluate(80e-6, &[20e-6], &mut [0.0], true)
+        .unwrap()
+        .force;
+    let plain = law.evaluate(60e-6, &[], &mut [], true).unwrap().force;
+    assert!((shifted / plain - 1.0).abs() < 1e-9);
+}
