@@ -21,7 +21,32 @@ pub const OUTPUT_SET: &[&str] = &[
     "pressure_left_2.png",
     "pressure_left_3.png",
     "profiles.png",
+    "wheel_profile.txt",
+    "rail_profile.txt",
 ];
+
+/// Sampling step of the written profiles \[m\].
+const PROFILE_STEP: f64 = 1e-4;
+
+/// The profile sampled every 0.1 mm as two columns in millimetres, with `z_sign` applied to
+/// its values (wheel: radius increase, positive down; rail: depth below the top, positive
+/// down), readable as a profile file by `[gap] wheel`/`rail`.
+fn profile_text(p: &wheelrail::Profile, what: &str, z_sign: f64) -> String {
+    let (lo, hi) = p.y_range();
+    let n = ((hi - lo) / PROFILE_STEP).floor() as usize;
+    let mut s = format!(
+        "# {what}: profile {} sampled every {} mm; y [mm], z [mm] positive downwards\n",
+        p.name(),
+        PROFILE_STEP * 1e3
+    );
+    for k in 0..=n {
+        let y = (lo + PROFILE_STEP * k as f64).min(hi);
+        if let Some(z) = p.z(y) {
+            s.push_str(&format!("{:.4} {:.7}\n", y * 1e3, z_sign * z * 1e3));
+        }
+    }
+    s
+}
 
 fn print_wheel(name: &str, w: &WheelSummary) {
     println!(
@@ -262,5 +287,21 @@ pub fn write_outputs(dir: &RunOutput, ws: &Wheelset, outcome: &WheelRailOutcome)
     let [a, b] = side_panels(ws, &outcome.contact, Side::Right, &outcome.right);
     let [c, d] = side_panels(ws, &outcome.contact, Side::Left, &outcome.left);
     plot::panels(&dir.path("profiles.png"), &[a, b, c, d])?;
+    std::fs::write(
+        dir.path("wheel_profile.txt"),
+        profile_text(
+            ws.wheel(),
+            "wheel (s from the tape circle, positive away from the flange; z = radius increase)",
+            1.0,
+        ),
+    )?;
+    std::fs::write(
+        dir.path("rail_profile.txt"),
+        profile_text(
+            ws.rail(),
+            "rail (y from the head centre, gauge side negative; z = depth below the top)",
+            -1.0,
+        ),
+    )?;
     output::write_summary(&dir.path("summary.json"), &outcome.summary)
 }

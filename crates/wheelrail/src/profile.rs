@@ -167,9 +167,13 @@ impl Profile {
     /// z, dz/dy, d²z/dy² at `y`, or `None` outside the profile.
     pub fn eval(&self, y: f64) -> Option<(f64, f64, f64)> {
         let (lo, hi) = self.y_range();
-        if !(y >= lo && y <= hi) {
+        // Rounding of computed end points (lo + (hi − lo)·k/n) may step past an end by a few
+        // ulps: such points are the end.
+        let tol = 1e-12 * (hi - lo).abs().max(1e-3);
+        if !(y >= lo - tol && y <= hi + tol) {
             return None;
         }
+        let y = y.clamp(lo, hi);
         Some(self.segment_at(y).eval(y))
     }
 

@@ -227,12 +227,20 @@ impl Wheelset {
             offset: (0.0, 0.0),
         };
         let (lo, hi) = self.rail.y_range();
+        let map = |y: f64| -> Result<(f64, f64), WheelRailError> {
+            placed.map(y.clamp(lo, hi)).ok_or_else(|| {
+                WheelRailError::InvalidProfile(format!(
+                    "rail `{}`: no value at y = {y} m",
+                    self.rail.name()
+                ))
+            })
+        };
         // Highest point: sample then refine.
         let n = 4000;
         let mut best = (lo, f64::NEG_INFINITY);
         for i in 0..=n {
             let y = lo + (hi - lo) * i as f64 / n as f64;
-            let z = placed.map(y).expect("in range").1;
+            let z = map(y)?.1;
             if z > best.1 {
                 best = (y, z);
             }
@@ -243,16 +251,16 @@ impl Wheelset {
         for _ in 0..100 {
             let m1 = a + (b - a) / 3.0;
             let m2 = b - (b - a) / 3.0;
-            if placed.map(m1).expect("in range").1 < placed.map(m2).expect("in range").1 {
+            if map(m1)?.1 < map(m2)?.1 {
                 a = m1;
             } else {
                 b = m2;
             }
         }
         let top_local = 0.5 * (a + b);
-        let z_top = placed.map(top_local).expect("in range").1;
+        let z_top = map(top_local)?.1;
         let target = z_top - self.params.gauge_depth;
-        if placed.map(lo).expect("in range").1 > target {
+        if map(lo)?.1 > target {
             return Err(WheelRailError::InvalidProfile(format!(
                 "rail `{}` does not reach {} m below its top on the gauge side (needed for the gauge point)",
                 self.rail.name(),
@@ -263,13 +271,13 @@ impl Wheelset {
         let (mut a, mut b) = (lo, top_local);
         for _ in 0..200 {
             let m = 0.5 * (a + b);
-            if placed.map(m).expect("in range").1 < target {
+            if map(m)?.1 < target {
                 a = m;
             } else {
                 b = m;
             }
         }
-        let y_gauge = placed.map(0.5 * (a + b)).expect("in range").0;
+        let y_gauge = map(0.5 * (a + b))?.0;
         Ok((0.5 * self.params.gauge - y_gauge, -z_top))
     }
 
