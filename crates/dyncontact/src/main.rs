@@ -17,9 +17,11 @@ mod modes_cli;
 mod moving_load_cli;
 mod output;
 mod plot;
+mod profile_sweep_cli;
 mod sweep_cli;
 mod vehicle_bridge_cli;
 mod vehicle_bridge_output;
+mod wheel_rail_cli;
 
 use std::path::{Path, PathBuf};
 
@@ -84,6 +86,31 @@ enum Command {
         /// with friction).
         #[arg(long, default_value = "out")]
         out: PathBuf,
+    },
+    /// Wheel–rail contact geometry and forces against the wheelset's lateral shift: contact
+    /// points, rolling radius difference, contact angles, equivalent conicity (a contact case
+    /// with `[gap] kind = "wheel_rail"`; docs/profiles.md).
+    ProfileSweep {
+        /// Case file (TOML) with `[gap] kind = "wheel_rail"`.
+        file: PathBuf,
+        /// First lateral shift, in metres.
+        #[arg(long, default_value_t = -0.01, allow_hyphen_values = true)]
+        from: f64,
+        /// Last lateral shift, in metres.
+        #[arg(long, default_value_t = 0.01, allow_hyphen_values = true)]
+        to: f64,
+        /// Step of the lateral shift, in metres.
+        #[arg(long, default_value_t = 0.0005)]
+        step: f64,
+        /// Amplitudes of the equivalent conicity, in metres, comma-separated.
+        #[arg(long, default_value = "0.001,0.002,0.003,0.004,0.005,0.006,0.008,0.01")]
+        amplitudes: String,
+        /// Output directory for profile_sweep.csv, conicity.csv, the plots and summary.json.
+        #[arg(long, default_value = "out")]
+        out: PathBuf,
+        /// Print the JSON summary on standard output.
+        #[arg(long)]
+        json: bool,
     },
     /// Modal analysis of a bridge: table of n, βL, ω, f (from a file's `[bridge]` section).
     Modes {
@@ -224,6 +251,7 @@ fn run_cli() -> Result<()> {
         }
         Command::Run { file: Some(f), .. }
         | Command::Contact { file: f, .. }
+        | Command::ProfileSweep { file: f, .. }
         | Command::Modes { file: f, .. }
         | Command::CreepCurve { file: f, .. }
         | Command::Sweep { file: f, .. } => plot::set_scenario(scenario_name(f)),
@@ -256,8 +284,33 @@ fn run_cli() -> Result<()> {
                     file.display()
                 )));
             }
+            if let Some(case) = sim::config::wheel_rail::parse(&text, base_dir(&file))
+                .map_err(|e| bad_input(e.into()))?
+            {
+                return run_wheel_rail(case, json, &out);
+            }
             let case = contact_case::parse(&text, base_dir(&file)).map_err(bad_input)?;
             run_contact(case, json, Some(&out))
+        }
+        Command::ProfileSweep {
+            file,
+            from,
+            to,
+            step,
+            amplitudes,
+            out,
+            json,
+        } => {
+            let text = read(&file)?;
+            output::set_input(scenario_name(&file), text.clone());
+            profile_sweep_cli::run(
+                &text,
+                base_dir(&file),
+                (from, to, step),
+                &amplitudes,
+                &out,
+                json,
+            )
         }
         Command::Modes { file, json, out } => modes_cli::run(&read(&file)?, json, Some(&out)),
         Command::Bench { target, max_n } => match target {
@@ -414,6 +467,13 @@ fn run_scenario(
         integrator: integrator.map(str::to_string),
         max_work,
     };
+    if is_wheel_rail(&text)
+        && integrator.is_none()
+        && let Some(case) =
+            sim::config::wheel_rail::parse(&text, &base).map_err(|e| bad_input(e.into()))?
+    {
+        return run_wheel_rail(case, json, out);
+    }
     match sim::config::load(&text, &base, &options).map_err(|e| bad_input(e.into()))? {
         ScenarioConfig::BallDrop(config) => ball_drop_cli::run(*config, out, json),
         ScenarioConfig::Contact(case) => run_contact(*case, json, Some(out)),
@@ -423,6 +483,44 @@ fn run_scenario(
             sweep_cli::run(*config, &text, &base, out, json, sim::sweep::Shard::ALL)
         }
     }
+}
+
+/// A contact case whose `[gap]` has `kind = "wheel_rail"`.
+fn is_wheel_rail(text: &str) -> bool {
+    let Ok(table) = text.parse::<toml::Table>() else {
+        return false;
+    };
+    table.get("kind").and_then(|k| k.as_str()) == Some("contact")
+        && table
+            .get("gap")
+            .and_then(|g| g.get("kind"))
+            .and_then(|k| k.as_str())
+            == Some("wheel_rail")
+}
+
+fn run_wheel_rail(
+    case: sim::config::wheel_rail::WheelRailConfig,
+    json: bool,
+    out: &Path,
+) -> Result<()> {
+    let run_out = output::RunOutput::create(out, wheel_rail_cli::OUTPUT_SET)?;
+    let outcome = sim::wheel_rail_case::solve(&case)?;
+    if json {
+        println!("{}", output::json_text(&outcome.summary)?);
+    } else {
+        wheel_rail_cli::print_summary(&outcome.summary);
+    }
+    wheel_rail_cli::write_outputs(&run_out, &case.wheelset, &outcome)?;
+    run_out.commit()?;
+    if !json {
+        let written: Vec<&str> = wheel_rail_cli::OUTPUT_SET
+            .iter()
+            .copied()
+            .filter(|name| out.join(name).exists())
+            .collect();
+        println!("wrote {}/{}", out.display(), written.join(", "));
+    }
+    Ok(())
 }
 
 fn run_contact(case: contact_case::PreparedCase, json: bool, out: Option<&Path>) -> Result<()> {

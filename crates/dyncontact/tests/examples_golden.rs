@@ -162,7 +162,16 @@ fn check(file: &str, args: &[&str], quotes: &[Quote], source: &str) -> serde_jso
     let out_dir = dir.path().join("out");
     let mut argv: Vec<&str> = vec![args[0], path.to_str().unwrap()];
     argv.extend_from_slice(&args[1..]);
-    if ["run", "creep-curve", "sweep", "contact", "modes"].contains(&args[0]) {
+    if [
+        "run",
+        "creep-curve",
+        "sweep",
+        "contact",
+        "modes",
+        "profile-sweep",
+    ]
+    .contains(&args[0])
+    {
         argv.extend(["--out", out_dir.to_str().unwrap()]);
     }
     argv.push("--json");
@@ -190,6 +199,53 @@ fn check(file: &str, args: &[&str], quotes: &[Quote], source: &str) -> serde_jso
     v
 }
 
+/// The wheel–rail example (docs/profiles.md, "Example"): the centred S1002/60E1 wheelset at
+/// 100 kN per wheel, and its profile sweep's conicity at 3 mm.
+#[test]
+fn wheel_rail_example_matches_docs_profiles() {
+    let docs = "docs/profiles.md (example)";
+    check(
+        "wheel_rail_s1002_60e1.toml",
+        &["contact"],
+        &[
+            q("delta_r", 0.0, 1e-12),
+            q("right/rolling_radius", 459.907e-3, 0.001e-3),
+            q("right/contact_angle", 0.024356, 0.000001),
+            q("right/wheel_s", 3.226e-3, 0.001e-3),
+            q("right/rail_y", 0.192e-3, 0.001e-3),
+            n("right/candidates", 2.0),
+            q("right/vertical_approach", 74.98e-6, 0.01e-6),
+            q("right/lateral_force", -2436.1, 0.1),
+            q("right/patches/0/max_pressure", 980.7e6, 0.1e6),
+            q("right/patches/0/half_length", 5.31e-3, 0.01e-3),
+            q("right/patches/0/half_width", 10.39e-3, 0.01e-3),
+            q("left/lateral_force", -2436.1, 0.1),
+        ],
+        docs,
+    );
+    check(
+        "wheel_rail_s1002_60e1.toml",
+        &[
+            "profile-sweep",
+            "--from",
+            "-0.006",
+            "--to",
+            "0.006",
+            "--step",
+            "0.003",
+            "--amplitudes",
+            "0.003",
+        ],
+        &[
+            q("conicity_3mm", 0.1785, 0.0001),
+            q("points/3/delta_r", 0.9587e-3, 0.0001e-3),
+            q("points/4/delta_r", 4.6609e-3, 0.0001e-3),
+            q("points/4/right_contact_angle", 0.42120, 0.00001),
+        ],
+        docs,
+    );
+}
+
 /// Every example file is checked by a test in this file (a new example needs its golden).
 #[test]
 fn every_example_has_a_golden_test() {
@@ -200,7 +256,7 @@ fn every_example_has_a_golden_test() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .filter(|n| n.ends_with(".toml"))
         .collect();
-    assert_eq!(files.len(), 22, "{files:?}");
+    assert_eq!(files.len(), 23, "{files:?}");
     let missing: Vec<&String> = files
         .iter()
         .filter(|f| !this.contains(&format!("\"{f}\"")))

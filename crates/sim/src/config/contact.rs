@@ -109,6 +109,24 @@ pub struct GapSpec {
     pub length: Option<f64>,
     pub edge_radius: Option<f64>,
     pub file: Option<PathBuf>,
+    /// `kind = "wheel_rail"`: wheel profile (built-in name, or a profile file).
+    pub wheel: Option<String>,
+    /// `kind = "wheel_rail"`: rail profile (built-in name, or a profile file).
+    pub rail: Option<String>,
+    /// `kind = "wheel_rail"`: rail inclination, "1:20", "1:40", "0" or its tangent.
+    pub inclination: Option<toml::Value>,
+    /// `kind = "wheel_rail"`: track gauge \[m\].
+    pub gauge: Option<f64>,
+    /// `kind = "wheel_rail"`: back-to-back distance of the wheels \[m\].
+    pub back_to_back: Option<f64>,
+    /// `kind = "wheel_rail"`: lateral shift of the wheelset \[m\].
+    pub lateral_shift: Option<f64>,
+    /// `kind = "wheel_rail"`: nominal rolling radius \[m\].
+    pub wheel_radius: Option<f64>,
+    /// `kind = "wheel_rail"`: prescribed roll angle \[rad\] (default: both wheels on their rails).
+    pub roll: Option<f64>,
+    /// `kind = "wheel_rail"`: smoothing parameter λ \[m³\] of measured profiles (default 0).
+    pub smoothing: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -445,6 +463,15 @@ fn only_keys(spec: &GapSpec, allowed: &[&str]) -> Result<(), ConfigError> {
         ("length", spec.length.is_some()),
         ("edge_radius", spec.edge_radius.is_some()),
         ("file", spec.file.is_some()),
+        ("wheel", spec.wheel.is_some()),
+        ("rail", spec.rail.is_some()),
+        ("inclination", spec.inclination.is_some()),
+        ("gauge", spec.gauge.is_some()),
+        ("back_to_back", spec.back_to_back.is_some()),
+        ("lateral_shift", spec.lateral_shift.is_some()),
+        ("wheel_radius", spec.wheel_radius.is_some()),
+        ("roll", spec.roll.is_some()),
+        ("smoothing", spec.smoothing.is_some()),
     ];
     for (key, is_set) in present {
         if is_set && !allowed.contains(&key) {
@@ -521,7 +548,7 @@ fn shape(spec: &GapSpec, grid: Option<&Grid>, base: &Path) -> Result<GapShape, C
             }
         }
         other => bail!(
-            "[gap] `kind` = \"{other}\": expected \"quadratic\", \"sphere\", \"cylinder\", \"punch\" or \"table\""
+            "[gap] `kind` = \"{other}\": expected \"quadratic\", \"sphere\", \"cylinder\", \"punch\", \"table\" or \"wheel_rail\""
         ),
     };
     shape.validate().map_err(|e| invalid!("[gap] {e}"))?;
@@ -616,6 +643,11 @@ fn prepare(case: ContactCase, base: &Path) -> Result<PreparedCase, ConfigError> 
         && kind != "contact"
     {
         bail!("`kind` = \"{kind}\" is not a contact case");
+    }
+    if case.gap.kind == "wheel_rail" {
+        bail!(
+            "[gap] kind = \"wheel_rail\" (several contact patches) is solved by `dyncontact contact FILE` and `dyncontact profile-sweep FILE`"
+        );
     }
     let material = checked_material(&case.body1, &case.body2)?;
     let load = checked_load(&case.load)?;

@@ -59,6 +59,7 @@ pub mod sweep;
 pub mod train;
 mod train_wheels;
 pub mod vehicle_bridge;
+pub mod wheel_rail;
 
 /// Scenario kinds of [`load`].
 pub const SCENARIO_KINDS: &[&str] = &[
