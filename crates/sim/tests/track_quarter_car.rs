@@ -57,6 +57,7 @@ fn today() -> f64 {
         static_load: 0.0,
     };
     let sc = Scenario {
+        moving_forces: Vec::new(),
         bridge: Box::new(basis(RHO_A)),
         damping: damping(),
         wheels: vec![wheel],
