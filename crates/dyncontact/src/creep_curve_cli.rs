@@ -190,7 +190,7 @@ fn write(dir: &RunOutput, c: &CreepCurve, which: usize) -> Result<()> {
             ]
         }),
     )?;
-    output::write_json(&dir.path("creep_curve.json"), c)?;
+    output::write_summary(&dir.path("creep_curve.json"), c)?;
     let lim = c.mu * c.normal_force;
     let pick = |p: &CurvePoint, k: usize| -> Option<f64> {
         match (k, which == 0) {
