@@ -91,13 +91,13 @@ pub fn run(prepared: BallDropConfig, out: &Path, json: bool) -> Result<()> {
 fn print_summary(p: &BallDropConfig, r: &BallDropResult) {
     let st = &r.stats;
     println!(
-        "ball drop: m = {:.6e} kg, K = {:.6e} N/m^1.5, {} impacts in {} s; {}: {} steps ({} rejected), {} f-evals, {:.3} ms",
+        "ball drop: m = {:.6e} kg, K = {:.6e} N/m^1.5, {} in {} s; {}: {} ({} rejected), {} f-evals, {:.3} ms",
         p.scenario.mass,
         r.hertz_constant,
-        r.impacts.len(),
+        crate::output::plural(r.impacts.len(), "impact"),
         r.final_time,
         st.method,
-        st.steps,
+        crate::output::plural(st.steps, "step"),
         st.rejected_steps,
         st.f_evals,
         1e3 * r.wall_time_s

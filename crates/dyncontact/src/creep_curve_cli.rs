@@ -190,7 +190,7 @@ fn write(dir: &RunOutput, c: &CreepCurve, which: usize) -> Result<()> {
             ]
         }),
     )?;
-    output::write_json(&dir.path("creep_curve.json"), c)?;
+    output::write_summary(&dir.path("creep_curve.json"), c)?;
     let lim = c.mu * c.normal_force;
     let pick = |p: &CurvePoint, k: usize| -> Option<f64> {
         match (k, which == 0) {
@@ -229,10 +229,16 @@ fn write(dir: &RunOutput, c: &CreepCurve, which: usize) -> Result<()> {
     }
     let comp = if which == 0 { "F_x" } else { "F_y" };
     let unit = if which == 2 { " [1/m]" } else { " [-]" };
+    // Say why FASTSIM and the linear theory are missing (they need a Hertzian gap).
+    let only_exact = if series.len() == 1 {
+        " (exact only: FASTSIM and linear theory need a Hertzian gap)"
+    } else {
+        ""
+    };
     plot::panels(
         &dir.path("creep_curve.png"),
         &[plot::Panel {
-            title: format!("creep force {comp} against {}", c.variable),
+            title: format!("creep force {comp} against {}{only_exact}", c.variable),
             x_label: format!("{}{unit}", c.variable),
             y_label: format!("{comp} / (μ F_n) [-]"),
             series,

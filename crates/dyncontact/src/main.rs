@@ -75,7 +75,7 @@ enum Command {
         max_work: Option<f64>,
     },
     /// Solve a quasi-static contact case (TOML): normal, and tangential (shift, rolling) when
-    /// the case has \[friction\] and \[kinematics\].
+    /// the case has `[friction]` and `[kinematics]`.
     Contact {
         /// Case file (TOML).
         file: PathBuf,
@@ -124,9 +124,9 @@ enum Command {
         out: PathBuf,
     },
     /// Creep force against creepage in steady rolling: exact, FASTSIM and linear theory
-    /// (a contact case with \[friction\]; see docs/tangential.md).
+    /// (a contact case with `[friction]`; see docs/tangential.md).
     CreepCurve {
-        /// Case file (TOML) with \[friction\] mu.
+        /// Case file (TOML) with `[friction] mu`.
         file: PathBuf,
         /// Sweep the longitudinal creepage: start:stop:count.
         #[arg(long, allow_hyphen_values = true)]
@@ -312,7 +312,11 @@ fn run_cli() -> Result<()> {
                 json,
             )
         }
-        Command::Modes { file, json, out } => modes_cli::run(&read(&file)?, json, Some(&out)),
+        Command::Modes { file, json, out } => {
+            let text = read(&file)?;
+            output::set_input(scenario_name(&file), text.clone());
+            modes_cli::run(&text, json, Some(&out))
+        }
         Command::Bench { target, max_n } => match target {
             BenchTarget::Contact => bench::contact(max_n),
             BenchTarget::Beam => bench::beam(),
@@ -357,7 +361,11 @@ fn run_cli() -> Result<()> {
             out,
             json,
         } => creep_curve_cli::run(
-            &read(&file)?,
+            &{
+                let text = read(&file)?;
+                output::set_input(scenario_name(&file), text.clone());
+                text
+            },
             base_dir(&file),
             [
                 creepage_x.as_deref(),

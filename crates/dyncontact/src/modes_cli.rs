@@ -76,7 +76,7 @@ pub fn run(text: &str, json: bool, out: Option<&Path>) -> Result<()> {
     }
     if let (Some(dir), Some(run_out)) = (out, run_out) {
         write_outputs(&run_out, &b)?;
-        output::write_json(&run_out.path("modes.json"), &s)?;
+        output::write_summary(&run_out.path("modes.json"), &s)?;
         run_out.commit()?;
         if !json {
             println!(

@@ -298,6 +298,15 @@ fn non_finite_paths(v: &toml::Value, at: String, out: &mut Vec<String>) {
     }
 }
 
+/// "1 step", "2 steps": `n` and the noun, plural when n ≠ 1 (every count the CLI prints).
+pub fn plural(n: usize, noun: &str) -> String {
+    if n == 1 {
+        format!("{n} {noun}")
+    } else {
+        format!("{n} {noun}s")
+    }
+}
+
 /// Write a CSV file with a header and numeric rows, atomically.
 pub fn write_csv(
     path: &Path,

@@ -321,14 +321,7 @@ pub fn simulate_full(
     })
 }
 
-/// "1 step", "2 steps": `n` and the noun, plural when n ≠ 1.
-fn plural(n: usize, noun: &str) -> String {
-    if n == 1 {
-        format!("{n} {noun}")
-    } else {
-        format!("{n} {noun}s")
-    }
-}
+use crate::output::plural;
 
 /// Prints the readable summary.
 pub fn print_summary(s: &Summary) {

@@ -125,6 +125,22 @@ fn csv(path: &std::path::Path) -> (Vec<String>, Vec<Vec<f64>>) {
     (header, rows)
 }
 
+/// Runs `command` on `text` (an example modified by the test, written as `name` in `dir`)
+/// with `--json` and an output directory; returns the JSON and standard error (must succeed).
+fn run_text(
+    dir: &std::path::Path,
+    command: &str,
+    name: &str,
+    text: &str,
+) -> (serde_json::Value, String) {
+    let f = support::write(dir, name, text);
+    let out = dir.join(format!("{name}.out"));
+    let o = dyncontact(&[command, &f, "--json", "--out", out.to_str().unwrap()]);
+    let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
+    assert!(o.status.success(), "{name}: {stderr}");
+    (serde_json::from_slice(&o.stdout).unwrap(), stderr)
+}
+
 /// The column `name` of a CSV table.
 fn column(header: &[String], rows: &[Vec<f64>], name: &str) -> Vec<f64> {
     let k = header
@@ -502,10 +518,7 @@ fn tangential_examples_match_the_docs() {
     let text = std::fs::read_to_string(example("tangential_rolling.toml")).unwrap();
     let fastsim = text.replace("method = \"exact\"", "method = \"fastsim\"");
     assert_ne!(fastsim, text, "the example has a [kinematics] table");
-    let f = support::write(dir.path(), "fastsim.toml", &fastsim);
-    let o = dyncontact(&["contact", &f, "--json"]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let fv: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let (fv, _) = run_text(dir.path(), "contact", "fastsim.toml", &fastsim);
     near(
         "FASTSIM F_x/(μF_n)",
         num(&fv, "tangential_force_x") / mu_fn,
@@ -892,16 +905,7 @@ fn preset_train_example_matches_the_docs() {
         let text = std::fs::read_to_string(example("ice3_bridge.toml"))
             .unwrap()
             .replace("modes = 8", modes);
-        let f = support::write(dir.path(), "ice3.toml", &text);
-        let o = dyncontact(&[
-            "run",
-            &f,
-            "--json",
-            "--out",
-            dir.path().join("o").to_str().unwrap(),
-        ]);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        let (v, _) = run_text(dir.path(), "run", "ice3.toml", &text);
         num(&v, "static_midspan_deflection")
     };
     near(
@@ -1068,16 +1072,7 @@ fn vehicle_bridge_examples_match_the_docs() {
     ] {
         let modified = text.replace("\ndt = 2.5e-4", &format!("\ndt = {dt}"));
         assert!(modified.contains(&format!("\ndt = {dt}")));
-        let f = support::write(dir.path(), "dt.toml", &modified);
-        let o = dyncontact(&[
-            "run",
-            &f,
-            "--json",
-            "--out",
-            dir.path().join("dt").to_str().unwrap(),
-        ]);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        let (v, e) = run_text(dir.path(), "run", &format!("dt{dt}.toml"), &modified);
         near(
             &format!("peak force at {dt}"),
             num(&v, "contact/max_force"),
@@ -1091,7 +1086,6 @@ fn vehicle_bridge_examples_match_the_docs() {
             0.00001,
         );
         if dt == "5e-4" {
-            let e = String::from_utf8_lossy(&o.stderr);
             let fc = e
                 .split("dt·f_c = ")
                 .nth(1)
@@ -1106,18 +1100,7 @@ fn vehicle_bridge_examples_match_the_docs() {
     // 2e-7 and the accelerations by 3e-5, relative" (bounds: the quoted digit rounded up).
     let tight = text.replace("\ntol = 1e-5\nmax_iter", "\ntol = 1e-6\nmax_iter");
     assert_ne!(tight, text, "the example's [coupling] tol");
-    let run = |t: &str| {
-        let f = support::write(dir.path(), "tol.toml", t);
-        let o = dyncontact(&[
-            "run",
-            &f,
-            "--json",
-            "--out",
-            dir.path().join("tol").to_str().unwrap(),
-        ]);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        serde_json::from_slice::<serde_json::Value>(&o.stdout).unwrap()
-    };
+    let run = |t: &str| run_text(dir.path(), "run", "tol.toml", t).0;
     let (a, b) = (run(&text), run(&tight));
     let change = |k: &str| (num(&b, k) / num(&a, k) - 1.0).abs();
     assert!(change("max_midspan_deflection") <= 2.5e-10);
@@ -1239,16 +1222,7 @@ fn braking_methods_match_the_docs() {
             &format!("\nmethod = \"{method}\""),
         );
         assert_ne!(modified, text);
-        let f = support::write(dir.path(), &format!("{method}.toml"), &modified);
-        let o = dyncontact(&[
-            "run",
-            &f,
-            "--json",
-            "--out",
-            dir.path().join(method).to_str().unwrap(),
-        ]);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        let (v, _) = run_text(dir.path(), "run", &format!("{method}.toml"), &modified);
         near(method, num(&v, "traction/max_longitudinal_force"), max, 1.0);
         near(
             method,

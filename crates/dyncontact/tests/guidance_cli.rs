@@ -152,6 +152,35 @@ fn summaries_echo_their_input_and_csv_counts_are_integers() {
     let s: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     assert_eq!(s["input"]["scenario"]["vehicle"]["speed"], 27.78);
+    // creep_curve.json and modes.json echo their input too.
+    for (args, file, key) in [
+        (
+            vec![
+                "creep-curve",
+                "tangential_rolling.toml",
+                "--creepage-x",
+                "0:0.001:2",
+            ],
+            "creep_curve.json",
+            "friction",
+        ),
+        (
+            vec!["modes", "moving_load_fryba.toml"],
+            "modes.json",
+            "bridge",
+        ),
+    ] {
+        let out = dir.path().join(file);
+        let path = example(args[1]);
+        let mut argv = args.clone();
+        argv[1] = path.to_str().unwrap();
+        argv.extend(["--out", out.to_str().unwrap()]);
+        assert_eq!(code(&dyncontact(&argv)), Some(0), "{argv:?}");
+        let s: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join(file)).unwrap()).unwrap();
+        assert_eq!(s["input"]["file"], args[1], "{file}");
+        assert!(s["input"]["scenario"][key].is_object(), "{file}: {s}");
+    }
 }
 
 /// Every subcommand that writes files writes them into `./out` unless `--out` says otherwise
@@ -171,4 +200,88 @@ fn contact_and_modes_write_into_out_by_default() {
         assert_eq!(code(&o), Some(0), "{args:?}");
         assert!(cwd.path().join("out").join(file).exists(), "{args:?}");
     }
+}
+
+/// `--help` lists the scenario kinds, points to `examples/` and the docs, says `contact` does
+/// tangential contact too; `run --help` lists the methods per kind; no help text shows the
+/// escaping of doc comments (`\[friction\]` in rustdoc reads `\[friction\]` in clap).
+#[test]
+fn help_names_kinds_examples_docs_and_reads_cleanly() {
+    let help = String::from_utf8(dyncontact(&["--help"]).stdout).unwrap();
+    for needle in [
+        "ball_drop, contact, moving_load, sweep, vehicle_bridge",
+        "examples/",
+        "docs/",
+        "tangential (shift, rolling)",
+        "dyncontact init",
+    ] {
+        assert!(help.contains(needle), "--help lacks {needle:?}:\n{help}");
+    }
+    let run = String::from_utf8(dyncontact(&["run", "--help"]).stdout).unwrap();
+    for needle in ["ball_drop", "vehicle_bridge newmark", "moving_load exact"] {
+        assert!(run.contains(needle), "run --help lacks {needle:?}:\n{run}");
+    }
+    for sub in [
+        "run",
+        "contact",
+        "modes",
+        "creep-curve",
+        "sweep",
+        "sweep-merge",
+        "init",
+        "bench",
+    ] {
+        let o = dyncontact(&[sub, "--help"]);
+        let text = String::from_utf8(o.stdout).unwrap();
+        assert!(o.status.success() && !text.is_empty(), "{sub} --help");
+        assert!(
+            !text.contains('\\'),
+            "{sub} --help shows an escape:\n{text}"
+        );
+    }
+    assert!(!help.contains('\\'), "--help shows an escape:\n{help}");
+}
+
+/// The printed summaries say what they count: Radau5's rejected steps are "rejected", rigid
+/// contact prints no pressure, a run without BEM no contact-solver iterations, and counts of
+/// one are singular ("1 impact").
+#[test]
+fn printed_summaries_use_the_right_words() {
+    let text = |file: &str| {
+        let dir = tempfile::tempdir().unwrap();
+        let o = dyncontact(&[
+            "run",
+            example(file).to_str().unwrap(),
+            "--out",
+            dir.path().join("o").to_str().unwrap(),
+        ]);
+        assert_eq!(code(&o), Some(0), "{file}");
+        String::from_utf8(o.stdout).unwrap()
+    };
+    let radau = text("vehicle_bridge_radau5.toml");
+    assert!(radau.contains(", 29 rejected steps"), "{radau}");
+    assert!(
+        !radau.contains("failed") && !radau.contains("contact-solver"),
+        "{radau}"
+    );
+    let rigid = text("vehicle_bridge_biggs.toml");
+    assert!(
+        !rigid.contains("pressure") && !rigid.contains("contact-solver"),
+        "{rigid}"
+    );
+    assert!(
+        rigid.contains("0 loss-of-contact events, ")
+            || rigid.contains("0 loss-of-contact events\n"),
+        "{rigid}"
+    );
+    let hertz = text("vehicle_bridge_two_span_flat.toml");
+    assert!(
+        !hertz.contains("contact-solver") && hertz.contains("161 loss-of-contact events"),
+        "{hertz}"
+    );
+    let bem = text("ball_drop_bem.toml");
+    assert!(
+        bem.contains(", 1 impact in 0.3 s; radau5: 85 steps (20 rejected)"),
+        "{bem}"
+    );
 }

@@ -138,6 +138,10 @@ pub(crate) fn tick_formatter(lo: f64, hi: f64) -> impl Fn(&f64) -> String {
         3
     };
     move |v: &f64| {
+        // A tick at zero computed as a round-off residue (5.4e-20 on a ±4e-4 axis) reads 0.
+        if v.abs() <= 1e-9 * span {
+            return "0".to_string();
+        }
         let text = if scientific {
             let s = format!("{v:.3e}");
             match s.split_once('e') {
@@ -242,6 +246,10 @@ mod tests {
         assert_eq!(f(&-1e-17), "0");
         assert_eq!(f(&0.4), "0.4");
         assert_eq!(f(&-0.25), "-0.25");
+        // Round-off residue of a zero tick on a small-valued axis.
+        let f = tick_formatter(-4.16e-4, 1.6e-5);
+        assert_eq!(f(&5.421e-20), "0");
+        assert_eq!(f(&-1e-4), "-1e-4");
         let f = tick_formatter(0.0, 3e9);
         assert_eq!(f(&2e9), "2e9");
         assert_eq!(f(&2.5e9), "2.5e9");

@@ -40,10 +40,58 @@ impl StructuralParameters {
         Ok(params)
     }
 
-    /// The structural method `name` with these parameters; the error names the key.
-    pub fn method(&self, name: &str) -> Result<StructuralMethod, ConfigError> {
+    /// The structural method `name` with these parameters; the error names the key. An
+    /// unknown name also lists `also`, the other methods the scenario kind takes (`exact`,
+    /// `radau5`), and suggests the nearest known name.
+    pub fn method(&self, name: &str, also: &[&str]) -> Result<StructuralMethod, ConfigError> {
         let params = self.list()?;
-        StructuralMethod::by_name(name, &params)
-            .map_err(|e| invalid!("[integrator] `method` = \"{name}\": {e}"))
+        StructuralMethod::by_name(name, &params).map_err(|e| {
+            let mut m = format!("[integrator] `method` = \"{name}\": {e}");
+            if e.to_string().contains("unknown structural method") {
+                if !also.is_empty() {
+                    m.push_str(&format!("; this kind also takes {}", also.join(", ")));
+                }
+                let known: Vec<&str> = STRUCTURAL_NAMES.iter().chain(also).copied().collect();
+                m.push_str(&super::suggestion(name.trim(), &known));
+            }
+            invalid!("{m}")
+        })
+    }
+}
+
+/// The structural methods' names as a scenario file writes them (for suggestions).
+const STRUCTURAL_NAMES: [&str; 10] = [
+    "newmark",
+    "average_acceleration",
+    "trapezoidal",
+    "linear_acceleration",
+    "central_difference",
+    "hht",
+    "generalized_alpha",
+    "verlet",
+    "leapfrog",
+    "backward_euler",
+];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_unknown_method_lists_the_other_methods_and_the_nearest() {
+        let p = StructuralParameters::default();
+        let e = p.method("radau", &["radau5"]).unwrap_err().to_string();
+        assert!(
+            e.contains("unknown structural method")
+                && e.contains("this kind also takes radau5")
+                && e.ends_with("(did you mean `radau5`?)"),
+            "{e}"
+        );
+        let e = p
+            .method("generalized_alfa", &["exact"])
+            .unwrap_err()
+            .to_string();
+        assert!(e.ends_with("(did you mean `generalized_alpha`?)"), "{e}");
+        assert!(p.method("newmark", &[]).is_ok());
     }
 }

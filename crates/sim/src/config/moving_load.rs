@@ -117,7 +117,7 @@ fn integrator(
         }
         return Ok((ModalIntegrator::ExactPiecewiseLinear, name, dt));
     }
-    let method = params.method(&name)?;
+    let method = params.method(&name, &["exact"])?;
     Ok((ModalIntegrator::Structural(method), name, dt))
 }
 

@@ -560,7 +560,7 @@ fn interaction_model(
         alpha: integ.and_then(|i| i.alpha),
         rho_inf: integ.and_then(|i| i.rho_inf),
     };
-    let integrator = Integrator::Structural(parameters.method(method_name)?);
+    let integrator = Integrator::Structural(parameters.method(method_name, &[])?);
     let mut wheels_max = 1;
     let mut vehicles = Vec::with_capacity(trains.len());
     for t in trains {

@@ -346,7 +346,7 @@ pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError
     };
     let integrator = match radau5(integ)? {
         Some(spec) => Integrator::Radau5(spec),
-        None => Integrator::Structural(params.method(method_name)?),
+        None => Integrator::Structural(params.method(method_name, &["radau5"])?),
     };
     let warnings = Vec::new();
     let dt = integ.and_then(|i| i.dt).unwrap_or(f64::NAN);
