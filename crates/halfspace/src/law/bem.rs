@@ -380,6 +380,10 @@ impl ContactLaw for BemLaw {
             return Ok(out);
         }
         let reusing = self.reuse.is_some();
+        if self.reuse.as_ref().is_some_and(|r| r.model.is_some()) {
+            // Start from the latest reused pressure (closer than the last full solve's).
+            self.solver.set_initial_pressure(&self.pressure)?;
+        }
         let sensitivity = !reusing
             && match self.options.tangent {
                 TangentPolicy::Requested => tangent,

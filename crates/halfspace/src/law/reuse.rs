@@ -46,7 +46,7 @@ const BASIS: usize = 3;
 const LEAVING_FACTOR: f64 = 2.0;
 
 /// Relative residual of the CG solves of the responses y_k.
-const RESPONSE_TOL: f64 = 1e-6;
+const RESPONSE_TOL: f64 = 1e-5;
 
 /// The responses y_k kept between models (warm starts of the next model's solves).
 #[derive(Debug)]
