@@ -13,6 +13,50 @@
 use sim::config::vehicle_bridge::parse;
 use sim::vehicle_bridge::{ContactSolves, Simulation};
 
+/// One Manchester bogie car (references.md §T4, 4 wheels) at 50 m/s on a random irregularity,
+/// BEM 16 × 16 at every wheel, 0.1 s.
+const FOUR_WHEELS: &str = r#"kind = "vehicle_bridge"
+[bridge]
+length = 25.0
+EI = 8.323e9
+mass_per_length = 2303.0
+supports = "simply_supported"
+modes = 8
+damping_ratio = 0.02
+[train]
+speed = 50.0
+position = 8.0
+[[train.vehicles]]
+type = "bogie_vehicle"
+length = 25.0
+body_mass = 32000.0
+body_pitch_inertia = 1.97e6
+bogie_spacing = 19.0
+bogie_mass = 2615.0
+bogie_pitch_inertia = 1476.0
+wheelbase = 2.56
+wheelset_mass = 1813.0
+primary_stiffness = 2.4e6
+primary_damping = 8.0e3
+secondary_stiffness = 8.6e5
+secondary_damping = 4.0e4
+[contact]
+model = "bem"
+grid = 16
+bem_tol = 1e-6
+[irregularity]
+kind = "random"
+spectrum = "german_low"
+lambda_min = 1.0
+lambda_max = 30.0
+components = 100
+seed = 3
+[integrator]
+method = "generalized_alpha"
+dt = 1e-4
+duration = 0.1
+"#;
+
 struct Run {
     forces: Vec<Vec<f64>>,
     max_deflection: f64,
@@ -93,48 +137,7 @@ fn default_scenario_reuse_within_1e_4() {
 /// irregularity, BEM 16 × 16 at every wheel, 0.1 s.
 #[test]
 fn four_wheels_reuse_within_1e_4() {
-    let text = r#"kind = "vehicle_bridge"
-[bridge]
-length = 25.0
-EI = 8.323e9
-mass_per_length = 2303.0
-supports = "simply_supported"
-modes = 8
-damping_ratio = 0.02
-[train]
-speed = 50.0
-position = 8.0
-[[train.vehicles]]
-type = "bogie_vehicle"
-length = 25.0
-body_mass = 32000.0
-body_pitch_inertia = 1.97e6
-bogie_spacing = 19.0
-bogie_mass = 2615.0
-bogie_pitch_inertia = 1476.0
-wheelbase = 2.56
-wheelset_mass = 1813.0
-primary_stiffness = 2.4e6
-primary_damping = 8.0e3
-secondary_stiffness = 8.6e5
-secondary_damping = 4.0e4
-[contact]
-model = "bem"
-grid = 16
-bem_tol = 1e-6
-[irregularity]
-kind = "random"
-spectrum = "german_low"
-lambda_min = 1.0
-lambda_max = 30.0
-components = 100
-seed = 3
-[integrator]
-method = "generalized_alpha"
-dt = 1e-4
-duration = 0.1
-"#;
-    compare("four wheels", text, 3e-6, 1e-4);
+    compare("four wheels", FOUR_WHEELS, 3e-6, 1e-4);
 }
 
 /// A corrugation of wavelength 4 cm (about three patch lengths; the pressure distribution
@@ -171,4 +174,24 @@ fn reuse_tol_out_of_range_is_refused() {
         .replace("[contact]", "[contact]\nreuse_tol = 1e-4");
     let e = parse(&hertz).err().expect("refused").to_string();
     assert!(e.contains("reuse_tol") && e.contains("bem"), "{e}");
+}
+
+/// The wheels' contact laws are evaluated in parallel (rayon) when several wheels solve:
+/// the four-wheel case gives bit-identical force histories and counts on one thread and on
+/// two.
+#[test]
+fn four_wheels_independent_of_the_thread_count() {
+    let on = |threads: usize, reuse_tol: f64| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| run(FOUR_WHEELS, reuse_tol))
+    };
+    for reuse_tol in [0.0, 3e-6] {
+        let (one, two) = (on(1, reuse_tol), on(2, reuse_tol));
+        assert_eq!(one.forces, two.forces, "reuse_tol {reuse_tol}");
+        assert_eq!(one.solves, two.solves, "reuse_tol {reuse_tol}");
+        assert_eq!(one.max_acceleration, two.max_acceleration);
+    }
 }
