@@ -49,6 +49,16 @@ pub struct ContactSummary {
     pub max_pressure: Option<f64>,
     /// max over wheels and time of (W_k − F_k)/W_k (1 = a wheel fully unloaded).
     pub max_unloading_ratio: f64,
+    /// BEM contact only: full NormCG solves over all wheels (the static start included).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub full_solves: Option<usize>,
+    /// BEM contact only: evaluations answered without a solve (`[contact] reuse_tol`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reused_evaluations: Option<usize>,
+    /// BEM contact only: the largest estimated force error of a reused evaluation, relative
+    /// to the force of the full solve it was reused from (0 without reuse).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_reuse_error_estimate: Option<f64>,
 }
 
 pub use sim::train_response::{ComfortSummary, TrainSummary, VehicleMax as BogieVehicleMax};
@@ -253,6 +263,7 @@ pub fn simulate_full(
     }
     let wall = start.elapsed().as_secs_f64();
     let stats = run.solver;
+    let solves = sim.contact_solves();
     let rows = recorder.finish()?;
     let summary = Summary {
         completed: run.completed,
@@ -269,6 +280,9 @@ pub fn simulate_full(
             loss_of_contact_events: run.loss_of_contact_events,
             max_pressure: (model != "rigid").then_some(run.max_pressure()),
             max_unloading_ratio: monitor.max_unloading_ratio(),
+            full_solves: solves.map(|s| s.full_solves),
+            reused_evaluations: solves.map(|s| s.reused),
+            max_reuse_error_estimate: solves.map(|s| s.max_estimate),
         },
         vehicles: monitor.vehicles(),
         comfort: train
@@ -458,32 +472,49 @@ pub fn run(config: VehicleBridgeConfig, out: &Path, json: bool) -> Result<()> {
     Ok(())
 }
 
+/// The `reuse_tol` of the reuse row of `dyncontact bench coupling` (the default scenario's
+/// force history, peak deflection and peak acceleration within 1e-4 of the full solves':
+/// `crates/sim/tests/vehicle_bridge_bem_reuse.rs`).
+pub const BENCH_REUSE_TOL: f64 = 3e-6;
+
 /// `dyncontact bench coupling`: the default scenario (BEM contact, 32 × 32 grid) with Picard
-/// and quasi-Newton coupling; wall time per step, simulated seconds per wall second, mean
-/// coupling and contact-solver iterations per step.
+/// and quasi-Newton coupling, and quasi-Newton with the reuse of full solves
+/// (`reuse_tol` = [`BENCH_REUSE_TOL`], references.md §C8.4); wall time per step, simulated
+/// seconds per wall second, mean coupling and contact-solver iterations per step, full solves.
 pub fn bench(default_scenario: &str) -> Result<()> {
     println!(
         "default vehicle_bridge scenario, BEM contact 32 x 32 at every step; {} rayon threads",
         rayon::current_num_threads()
     );
     println!(
-        "{:>13} {:>8} {:>11} {:>12} {:>13} {:>13} {:>16} {:>8}",
+        "{:>13} {:>9} {:>8} {:>11} {:>12} {:>13} {:>13} {:>16} {:>8} {:>11}",
         "solver",
+        "reuse_tol",
         "steps",
         "wall [s]",
         "µs/step",
         "sim s/wall s",
         "iter/step",
         "contact it/step",
-        "failed"
+        "failed",
+        "full solves"
     );
-    for solver in ["picard", "quasi_newton"] {
+    for (solver, reuse_tol) in [
+        ("picard", 0.0),
+        ("quasi_newton", 0.0),
+        ("quasi_newton", BENCH_REUSE_TOL),
+    ] {
         let mut scenario = sim::config::vehicle_bridge::parse(default_scenario)?.scenario;
         scenario.contact = match scenario.contact {
-            ContactModel::Bem { tol, .. } => ContactModel::Bem { elements: 32, tol },
+            ContactModel::Bem { tol, .. } => ContactModel::Bem {
+                elements: 32,
+                tol,
+                reuse_tol,
+            },
             _ => ContactModel::Bem {
                 elements: 32,
                 tol: 1e-8,
+                reuse_tol,
             },
         };
         scenario.coupling.solver = CouplingSolver::by_name(solver).expect("known name");
@@ -491,15 +522,17 @@ pub fn bench(default_scenario: &str) -> Result<()> {
             Ok(o) => {
                 let s = &o.summary;
                 println!(
-                    "{:>13} {:>8} {:>11.3} {:>12.1} {:>13.2} {:>13.2} {:>16.2} {:>8}",
+                    "{:>13} {:>9.0e} {:>8} {:>11.3} {:>12.1} {:>13.2} {:>13.2} {:>16.2} {:>8} {:>11}",
                     solver,
+                    reuse_tol,
                     s.solver.steps,
                     s.wall_time_s,
                     1e6 * s.wall_time_s / s.solver.steps.max(1) as f64,
                     s.simulated_time_s / s.wall_time_s,
                     s.solver.mean_iterations_per_step,
                     s.solver.mean_contact_iterations_per_step,
-                    s.solver.failed_steps
+                    s.solver.failed_steps,
+                    s.contact.full_solves.unwrap_or(0)
                 );
             }
             Err(e) => println!("{solver:>13} failed: {e:#}"),

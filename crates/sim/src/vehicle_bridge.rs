@@ -88,7 +88,7 @@ use halfspace::law::{self, LawOutput};
 use integrate::structural::{StepEquation, StructuralStepper};
 
 use assembly::Structure;
-pub use contact::ContactGeometry;
+pub use contact::{ContactGeometry, ContactSolves};
 pub use error::VehicleBridgeError;
 pub use irregularity::{Irregularity, RandomProfile, TrackSpectrum};
 use linalg::{BlockDiagonal, CapacitanceWork, DenseWork};

@@ -69,6 +69,7 @@ fn bem_and_hertz_force_histories_agree() {
     let (f_b, d_b, sim) = run(ContactModel::Bem {
         elements: 32,
         tol: 1e-10,
+        reuse_tol: 0.0,
     });
     let w = sim.static_loads()[0];
     let peak = f_h.iter().fold(0.0f64, |m, f| m.max(*f));

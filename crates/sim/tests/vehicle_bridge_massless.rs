@@ -212,6 +212,7 @@ fn massless_wheel_input_errors_name_the_key() {
         ContactModel::Bem {
             elements: 8,
             tol: DEFAULT_BEM_TOL,
+            reuse_tol: 0.0,
         },
         "rigid",
     );

@@ -84,6 +84,7 @@ fn contact_for(method: TractionMethod) -> ContactModel {
         TractionMethod::Exact => ContactModel::Bem {
             elements: BEM_N,
             tol: 1e-9,
+            reuse_tol: 0.0,
         },
         _ => ContactModel::Hertz,
     }

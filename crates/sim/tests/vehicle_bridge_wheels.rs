@@ -173,6 +173,7 @@ fn wheel_jumps_over_a_dip_with_every_model() {
         ContactModel::Bem {
             elements: 16,
             tol: 1e-9,
+            reuse_tol: 0.0,
         },
     ] {
         let m_w = 300.0;

@@ -1,5 +1,6 @@
 //! The boundary-element (half-space) contact law: NormCG at prescribed approach.
 
+use super::reuse::{FrozenSet, Responses};
 use super::{ContactLaw, LawOutput, check_columns};
 use crate::error::{ContactError, positive};
 use crate::gap::{GapShape, auto_grid};
@@ -31,6 +32,12 @@ pub struct BemOptions {
     /// δ ≤ 0 returns zero at once; for 0 < δ ≤ min h the solver runs (and its warm start
     /// restarts from the zero pressure).
     pub skip_separated: bool,
+    /// Reuse of a full solve across evaluations (references.md §C8.4): an evaluation whose
+    /// estimated force error on the frozen contact set of the last full solve is at most
+    /// `reuse_tol` × that solve's force is answered by the model without a solve; 0 (the
+    /// default) solves every evaluation. With reuse on the tangent is always fresh (the
+    /// frozen set's dF/dδ).
+    pub reuse_tol: f64,
 }
 
 impl Default for BemOptions {
@@ -45,6 +52,7 @@ impl Default for BemOptions {
             tangent: TangentPolicy::Requested,
             memoize: true,
             skip_separated: true,
+            reuse_tol: 0.0,
         }
     }
 }
@@ -72,6 +80,30 @@ pub struct BemLaw {
     last_stiffness: Option<f64>,
     column_force: Vec<f64>,
     solves: usize,
+    reuse: Option<Reuse>,
+}
+
+/// The reuse state of a [`BemLaw`] (references.md §C8.4).
+#[derive(Debug)]
+struct Reuse {
+    responses: Responses,
+    model: Option<FrozenSet>,
+    delta_g: Vec<f64>,
+    stats: ReuseStats,
+}
+
+/// Counts of the reuse of full solves by a [`BemLaw`] (references.md §C8.4).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ReuseStats {
+    /// Full NormCG solves (including the static start).
+    pub full_solves: usize,
+    /// Evaluations answered by the frozen-set model without a solve.
+    pub reused: usize,
+    /// Largest estimated force error of a reused evaluation, relative to the force of the
+    /// full solve its model was built from.
+    pub max_estimate: f64,
+    /// The estimate of the last evaluation in the same measure (0 when it solved).
+    pub last_estimate: f64,
 }
 
 impl BemLaw {
@@ -91,7 +123,24 @@ impl BemLaw {
         }
         positive("tol", options.solver.tol)?;
         positive("sensitivity_tol", options.solver.sensitivity_tol)?;
-        let solver = NormalSolver::new(grid, material)?;
+        if !(options.reuse_tol.is_finite() && options.reuse_tol >= 0.0) {
+            return Err(ContactError::InvalidParameter {
+                name: "reuse_tol",
+                value: options.reuse_tol,
+                reason: "must be finite and non-negative (0: no reuse)",
+            });
+        }
+        let mut solver = NormalSolver::new(grid, material)?;
+        let reuse = if options.reuse_tol > 0.0 {
+            Some(Reuse {
+                responses: Responses::new(&grid, &mut solver)?,
+                model: None,
+                delta_g: Vec::with_capacity(grid.nx),
+                stats: ReuseStats::default(),
+            })
+        } else {
+            None
+        };
         let n = grid.len();
         Ok(Self {
             solver,
@@ -106,6 +155,7 @@ impl BemLaw {
             last_stiffness: None,
             column_force: vec![0.0; grid.nx],
             solves: 0,
+            reuse,
         })
     }
 
@@ -205,6 +255,85 @@ impl BemLaw {
     }
 }
 
+impl BemLaw {
+    /// The frozen-set model's answer when reuse is on, a model exists and its estimate is
+    /// within `reuse_tol` (references.md §C8.4).
+    fn try_reuse(
+        &mut self,
+        delta: f64,
+        column_gap: &[f64],
+        column_force: &mut [f64],
+    ) -> Option<LawOutput> {
+        let tol = self.options.reuse_tol;
+        let reuse = self.reuse.as_mut()?;
+        reuse.stats.last_estimate = 0.0;
+        let model = reuse.model.as_ref()?;
+        let prediction = model.predict(
+            &reuse.responses,
+            delta,
+            column_gap,
+            &mut self.column_force,
+            &mut self.pressure,
+            &mut reuse.delta_g,
+        )?;
+        let reference = model.reference_force();
+        // A NaN estimate fails the comparison and solves.
+        let within = prediction.estimate <= tol * reference;
+        if !within || prediction.force <= 0.0 {
+            return None;
+        }
+        let estimate = prediction.estimate / reference;
+        reuse.stats.reused += 1;
+        reuse.stats.last_estimate = estimate;
+        reuse.stats.max_estimate = reuse.stats.max_estimate.max(estimate);
+        column_force.copy_from_slice(&self.column_force[..column_force.len()]);
+        self.last_stiffness = Some(prediction.stiffness);
+        Some(LawOutput {
+            force: prediction.force,
+            stiffness: prediction.stiffness,
+            tangent_fresh: true,
+            energy: prediction.energy,
+            patch_length: prediction.patch.0,
+            patch_width: prediction.patch.1,
+            max_pressure: prediction.max_pressure,
+            iterations: 0,
+        })
+    }
+
+    /// With reuse on, the frozen-set model of the full `solution`; returns its dF/dδ.
+    fn rebuild_model(
+        &mut self,
+        solution: &crate::solution::NormalSolution,
+        delta: f64,
+        column_gap: &[f64],
+        energy: f64,
+    ) -> Result<Option<f64>, ContactError> {
+        let Some(reuse) = self.reuse.as_mut() else {
+            return Ok(None);
+        };
+        reuse.model = None;
+        if solution.elements_in_contact == 0 {
+            return Ok(None);
+        }
+        let model = FrozenSet::build(
+            &mut self.solver,
+            &mut reuse.responses,
+            solution,
+            delta,
+            column_gap,
+            &self.column_force,
+            energy,
+            self.options.solver.max_iter,
+        )?;
+        let stiffness = model.as_ref().map(|m| m.stiffness());
+        reuse.model = model;
+        if let Some(k) = stiffness {
+            self.last_stiffness = Some(k);
+        }
+        Ok(stiffness)
+    }
+}
+
 impl ContactLaw for BemLaw {
     fn name(&self) -> &'static str {
         "bem"
@@ -246,12 +375,22 @@ impl ContactLaw for BemLaw {
             self.last = Some((delta, out));
             return Ok(out);
         }
-        let sensitivity = match self.options.tangent {
-            TangentPolicy::Requested => tangent,
-            TangentPolicy::RequestedOrMissing => {
-                tangent || self.last_stiffness.is_none_or(|k| k <= 0.0)
-            }
-        };
+        if let Some(out) = self.try_reuse(delta, column_gap, column_force) {
+            self.last = Some((delta, out));
+            return Ok(out);
+        }
+        let reusing = self.reuse.is_some();
+        if self.reuse.as_ref().is_some_and(|r| r.model.is_some()) {
+            // Start from the latest reused pressure (closer than the last full solve's).
+            self.solver.set_initial_pressure(&self.pressure)?;
+        }
+        let sensitivity = !reusing
+            && match self.options.tangent {
+                TangentPolicy::Requested => tangent,
+                TangentPolicy::RequestedOrMissing => {
+                    tangent || self.last_stiffness.is_none_or(|k| k <= 0.0)
+                }
+            };
         let options = SolverOptions {
             sensitivity,
             ..self.options.solver
@@ -286,11 +425,17 @@ impl ContactLaw for BemLaw {
             (0.0, 0.0)
         };
         self.pressure.copy_from_slice(&solution.pressure);
+        let energy = 0.5 * area * work;
+        let (stiffness, tangent_fresh) =
+            match self.rebuild_model(&solution, delta, column_gap, energy)? {
+                Some(k) => (k, true),
+                None => (stiffness, tangent_fresh),
+            };
         let out = LawOutput {
             force: solution.normal_force,
             stiffness,
             tangent_fresh,
-            energy: 0.5 * area * work,
+            energy,
             patch_length: 2.0 * a,
             patch_width: 2.0 * b,
             max_pressure: solution.max_pressure,
@@ -305,12 +450,22 @@ impl ContactLaw for BemLaw {
     fn static_approach(&mut self, force: f64) -> Result<f64, ContactError> {
         self.gap.copy_from_slice(&self.base_gap);
         self.last = None;
+        if let Some(reuse) = self.reuse.as_mut() {
+            reuse.model = None;
+        }
         let solution =
             self.solver
                 .solve(&self.gap, NormalLoad::Force(force), &self.options.solver)?;
         self.solves += 1;
         self.pressure.copy_from_slice(&solution.pressure);
         Ok(solution.approach)
+    }
+
+    fn reuse_stats(&self) -> Option<ReuseStats> {
+        Some(ReuseStats {
+            full_solves: self.solves,
+            ..self.reuse.as_ref().map(|r| r.stats).unwrap_or_default()
+        })
     }
 
     fn pressure_field(&self) -> Option<(&Grid, &[f64])> {

@@ -95,6 +95,10 @@ impl<L: ContactLaw> ContactLaw for Damped<L> {
         self.law.pressure_field()
     }
 
+    fn reuse_stats(&self) -> Option<super::ReuseStats> {
+        self.law.reuse_stats()
+    }
+
     fn centreline_pressure(&self, out: &mut Vec<(f64, f64)>) {
         self.law.centreline_pressure(out);
     }

@@ -54,9 +54,10 @@ mod bem;
 mod damped;
 mod hertz;
 mod hertz_line;
+mod reuse;
 mod rigid;
 
-pub use bem::{BemLaw, BemOptions, TangentPolicy};
+pub use bem::{BemLaw, BemOptions, ReuseStats, TangentPolicy};
 pub use damped::{Damped, DampingModel};
 pub use hertz::HertzPoint;
 pub use hertz_line::HertzLine;
@@ -120,6 +121,12 @@ pub trait ContactLaw: std::fmt::Debug + Send {
 
     /// The approach δ \[m\] that carries `force` \[N\] with no column corrections.
     fn static_approach(&mut self, force: f64) -> Result<f64, ContactError>;
+
+    /// The counts of full solves and of evaluations answered without one, for laws that
+    /// solve (`bem`); `None` for closed forms.
+    fn reuse_stats(&self) -> Option<ReuseStats> {
+        None
+    }
 
     /// The grid and pressure \[Pa\] of the last evaluation (x fastest) for laws that solve the
     /// pressure field; `None` for closed forms.

@@ -132,6 +132,7 @@ impl ContactForce {
             tangent: TangentPolicy::Requested,
             memoize: true,
             skip_separated: false,
+            reuse_tol: 0.0,
         };
         let law = BemLaw::from_shape(
             &gap_shape,

@@ -182,6 +182,7 @@ pub struct ContactSpec {
     pub nu: Option<f64>,
     pub grid: Option<usize>,
     pub bem_tol: Option<f64>,
+    pub reuse_tol: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -460,17 +461,29 @@ pub(crate) fn contact_of(
                     "contact.bem_tol",
                     c.and_then(|c| c.bem_tol).unwrap_or(DEFAULT_BEM_TOL),
                 )?,
+                reuse_tol: reuse_tol(c.and_then(|c| c.reuse_tol))?,
             }
         }
         other => bail!("[contact] `model` = \"{other}\": expected rigid, hertz or bem"),
     };
     if let Some(c) = c
         && !matches!(contact, ContactModel::Bem { .. })
-        && (c.grid.is_some() || c.bem_tol.is_some())
+        && (c.grid.is_some() || c.bem_tol.is_some() || c.reuse_tol.is_some())
     {
-        bail!("[contact]: `grid` and `bem_tol` apply to model = \"bem\" only");
+        bail!("[contact]: `grid`, `bem_tol` and `reuse_tol` apply to model = \"bem\" only");
     }
     Ok((contact, geometry))
+}
+
+/// `[contact] reuse_tol`: 0 (the default, a solve at every evaluation) … 1e-2.
+fn reuse_tol(v: Option<f64>) -> Result<f64, ConfigError> {
+    let v = v.unwrap_or(0.0);
+    if !(v.is_finite() && (0.0..=1e-2).contains(&v)) {
+        return Err(invalid!(
+            "[contact] `reuse_tol` = {v}: must be in [0, 0.01] (0: solve at every evaluation)"
+        ));
+    }
+    Ok(v)
 }
 
 fn need(v: Option<f64>, key: &str, kind: &str) -> Result<f64, ConfigError> {

@@ -81,8 +81,15 @@ impl ContactGeometry {
 
     /// The boundary-element law (module documentation) on an `n × n` grid sized for forces up
     /// to `max_force` \[N\] (half-widths of 1.25 × the Hertz semi-axes at `max_force`), NormCG
-    /// tolerance `tol`.
-    pub fn bem(&self, n: usize, max_force: f64, tol: f64) -> Result<BemLaw, VehicleBridgeError> {
+    /// tolerance `tol`, full solves reused within the estimated relative force error
+    /// `reuse_tol` (0: none; [`BemOptions::reuse_tol`]).
+    pub fn bem(
+        &self,
+        n: usize,
+        max_force: f64,
+        tol: f64,
+        reuse_tol: f64,
+    ) -> Result<BemLaw, VehicleBridgeError> {
         if !(4..=512).contains(&n) {
             return Err(VehicleBridgeError::InvalidParameter {
                 name: "contact.grid".to_string(),
@@ -113,6 +120,7 @@ impl ContactGeometry {
             tangent: TangentPolicy::RequestedOrMissing,
             memoize: false,
             skip_separated: true,
+            reuse_tol,
         };
         Ok(BemLaw::wheel_on_rail(
             self.wheel_radius,
@@ -135,9 +143,16 @@ pub(super) fn wheel_contact(
     Ok(match model {
         ContactModel::Rigid => LawModel::Rigid(RigidConstraint::new(true)),
         ContactModel::Hertz => LawModel::Law(Box::new(geometry.hertz()?)),
-        ContactModel::Bem { elements, tol } => {
-            LawModel::Law(Box::new(geometry.bem(elements, 2.5 * load, tol)?))
-        }
+        ContactModel::Bem {
+            elements,
+            tol,
+            reuse_tol,
+        } => LawModel::Law(Box::new(geometry.bem(
+            elements,
+            2.5 * load,
+            tol,
+            reuse_tol,
+        )?)),
     })
 }
 
@@ -177,4 +192,41 @@ pub(super) fn pressure_field(contact: &LawModel) -> Option<(&Grid, &[f64])> {
 /// The error of wheel `wheel`'s contact law.
 pub(super) fn wheel_error(wheel: usize) -> impl Fn(ContactError) -> VehicleBridgeError {
     move |source| VehicleBridgeError::WheelContact { wheel, source }
+}
+
+/// The full solves of the boundary-element contacts of a run and their reuse (references.md
+/// §C8.4), summed over the wheels.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ContactSolves {
+    /// Full NormCG solves over all wheels (the static start included).
+    pub full_solves: usize,
+    /// Evaluations answered by the frozen-set model without a solve.
+    pub reused: usize,
+    /// Largest estimated force error of a reused evaluation relative to the force of its
+    /// full solve (0 without reuse).
+    pub max_estimate: f64,
+}
+
+impl super::Simulation {
+    /// The full solves and their reuse over the wheels; `None` when no wheel solves its
+    /// contact (Hertz, rigid).
+    pub fn contact_solves(&self) -> Option<ContactSolves> {
+        let mut total: Option<ContactSolves> = None;
+        for contact in &self.contacts {
+            if let Some(s) = contact_law_stats(contact) {
+                let t = total.get_or_insert_with(ContactSolves::default);
+                t.full_solves += s.full_solves;
+                t.reused += s.reused;
+                t.max_estimate = t.max_estimate.max(s.max_estimate);
+            }
+        }
+        total
+    }
+}
+
+fn contact_law_stats(contact: &LawModel) -> Option<halfspace::law::ReuseStats> {
+    match contact {
+        LawModel::Law(law) => law.reuse_stats(),
+        LawModel::Rigid(_) => None,
+    }
 }

@@ -69,36 +69,68 @@ impl Simulation {
     }
 
     /// Evaluates every contact at the iterate `work.x`: approach, force, modal loads, ĝ and v.
+    ///
+    /// Three passes: the approach and the column gaps of every wheel; the contact laws, in
+    /// parallel (rayon) when at least [`PARALLEL_LAWS`] wheels solve their contact (BEM), each
+    /// law on its own data, so the results do not depend on the thread count; the modal
+    /// loads, ĝ and v.
     pub(super) fn evaluate_contacts(&mut self, tangent: bool) -> Result<(), VehicleBridgeError> {
         let m = self.scenario.bridge.n_modes();
         let w = &mut self.work;
         for k in 0..self.contacts.len() {
             let iw = self.wheel_dof[k];
             let defl = w.deflection_under(k, &w.x);
-            let delta = w.approach(k, iw, &w.x);
-            w.delta[k] = delta;
-            let shapes = &w.shape_at_wheel[k];
-            let out = match &mut self.contacts[k] {
+            w.delta[k] = w.approach(k, iw, &w.x);
+            if let LawModel::Law(law) = &self.contacts[k] {
+                for i in 0..law.columns().len() {
+                    let cs = &w.shape_at_columns[k][i * m..(i + 1) * m];
+                    let wc: f64 = (0..w.span_modes[k]).map(|j| w.x[j] * cs[j]).sum();
+                    w.column_gap[k][i] = (wc - defl) - (w.r_at_columns[k][i] - w.r_at_wheel[k]);
+                }
+            }
+        }
+        let forces = &self.forces;
+        let evaluate = |(k, (((contact, delta), gap), (column_force, out))): LawItem<'_>|
+         -> Result<(), VehicleBridgeError> {
+            *out = match contact {
                 LawModel::Rigid(_) => {
-                    let f = self.forces[k];
-                    w.column_force[k][0] = f;
+                    column_force[0] = forces[k];
                     LawOutput {
-                        force: f,
+                        force: forces[k],
                         ..LawOutput::default()
                     }
                 }
-                LawModel::Law(law) => {
-                    let ncol = law.columns().len();
-                    for i in 0..ncol {
-                        let cs = &w.shape_at_columns[k][i * m..(i + 1) * m];
-                        let wc: f64 = (0..w.span_modes[k]).map(|j| w.x[j] * cs[j]).sum();
-                        w.column_gap[k][i] = (wc - defl) - (w.r_at_columns[k][i] - w.r_at_wheel[k]);
-                    }
-                    law.evaluate(delta, &w.column_gap[k], &mut w.column_force[k], tangent)
-                        .map_err(wheel_error(k))?
-                }
+                LawModel::Law(law) => law
+                    .evaluate(*delta, gap, column_force, tangent)
+                    .map_err(wheel_error(k))?,
             };
-            w.outputs[k] = out;
+            Ok(())
+        };
+        let solving = self
+            .contacts
+            .iter()
+            .filter(|c| super::contact::pressure_field(c).is_some())
+            .count();
+        let items = self
+            .contacts
+            .iter_mut()
+            .zip(&w.delta)
+            .zip(&w.column_gap)
+            .zip(w.column_force.iter_mut().zip(w.outputs.iter_mut()));
+        if solving >= PARALLEL_LAWS {
+            use rayon::prelude::*;
+            let items: Vec<_> = items.enumerate().collect();
+            // The first error by wheel index, whatever the thread count.
+            let results: Vec<Result<(), VehicleBridgeError>> =
+                items.into_par_iter().map(evaluate).collect();
+            results.into_iter().collect::<Result<(), _>>()?;
+        } else {
+            items.enumerate().try_for_each(evaluate)?;
+        }
+        for k in 0..self.contacts.len() {
+            let iw = self.wheel_dof[k];
+            let out = w.outputs[k];
+            let shapes = &w.shape_at_wheel[k];
             let load = &mut w.modal_load[k];
             load.fill(0.0);
             let mk = w.span_modes[k];
@@ -125,6 +157,21 @@ impl Simulation {
         Ok(())
     }
 }
+
+/// One wheel's part of the law pass: its index, contact, approach, column gaps, and the
+/// column forces and output it writes.
+type LawItem<'a> = (
+    usize,
+    (
+        ((&'a mut LawModel, &'a f64), &'a Vec<f64>),
+        (&'a mut Vec<f64>, &'a mut LawOutput),
+    ),
+);
+
+/// Number of wheels solving their contact (BEM) from which [`Simulation::evaluate_contacts`]
+/// evaluates the laws in parallel (below it a closed form or one solve is cheaper than the
+/// threads' hand-over).
+pub(super) const PARALLEL_LAWS: usize = 2;
 
 /// Adds the modal loads of one wheel, `I_j += Σ_i (scale F_i) w_j(x_k + ξ_i)` (module
 /// documentation of the vehicle–bridge model), to `load` (m values): `column_force` holds the

@@ -47,8 +47,14 @@ pub enum ContactModel {
     Rigid,
     /// Closed-form Hertz spring.
     Hertz,
-    /// Half-space boundary elements on an `elements × elements` grid, NormCG tolerance `tol`.
-    Bem { elements: usize, tol: f64 },
+    /// Half-space boundary elements on an `elements × elements` grid, NormCG tolerance `tol`,
+    /// full solves reused across evaluations within the estimated relative force error
+    /// `reuse_tol` (0: a solve at every evaluation; `halfspace::law::BemOptions::reuse_tol`).
+    Bem {
+        elements: usize,
+        tol: f64,
+        reuse_tol: f64,
+    },
 }
 
 /// The time integrator of the coupled system, chosen with the scenario.
