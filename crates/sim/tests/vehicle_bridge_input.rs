@@ -86,3 +86,30 @@ fn a_name_is_printed_as_text_not_nan() {
     assert!(e.contains("`contact.model` = \"rigid\""), "{e}");
     assert!(!e.contains("NaN"), "{e}");
 }
+
+/// A corrugation without `start` runs everywhere with the phase of one starting at x = 0,
+/// r = a sin(2πx/λ) (it was a constant: a start at −1e300 rounded x away): on the approach, on
+/// the span and far along it, its height equals the closed form to 1e-6 of the amplitude (the
+/// default start lies about 1e7 m before x = 0, so x − x₀ keeps x to ~2e-9 m).
+#[test]
+fn a_corrugation_without_start_has_its_phase_at_x_zero() {
+    let default = example("vehicle_bridge_default.toml");
+    let (head, rest) = default.split_once("[irregularity]").unwrap();
+    let (_, tail) = rest.split_once("[integrator]").unwrap();
+    let text = format!(
+        "{head}[irregularity]\nkind = \"corrugation\"\namplitude = 5e-6\nwavelength = 0.04\n[integrator]{tail}"
+    );
+    let irregularity = match config::load(&text, Path::new("."), &LoadOptions::default()) {
+        Ok(ScenarioConfig::VehicleBridge(v)) => v.scenario.irregularity,
+        Ok(_) => panic!("not a vehicle_bridge scenario"),
+        Err(e) => panic!("{e}"),
+    };
+    for x in [-12.345, -0.01, 0.0, 0.013, 3.21, 12.5, 24.999, 1234.5678] {
+        let expected = 5e-6 * (std::f64::consts::TAU * x / 0.04).sin();
+        let got = irregularity.height(x);
+        assert!(
+            (got - expected).abs() <= 1e-6 * 5e-6,
+            "x = {x}: {got} vs {expected}"
+        );
+    }
+}

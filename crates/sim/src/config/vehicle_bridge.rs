@@ -515,12 +515,17 @@ fn irregularity(spec: &IrregularitySpec, wheel_radius: f64) -> Result<Irregulari
                 wheel_radius,
             }
         }
-        "corrugation" => Irregularity::Corrugation {
-            amplitude: need(spec.amplitude, "amplitude", k)?,
-            wavelength: need(spec.wavelength, "wavelength", k)?,
-            start: spec.start.unwrap_or(f64::NEG_INFINITY).max(-1e300),
-            end: spec.end.unwrap_or(f64::INFINITY).min(1e300),
-        },
+        "corrugation" => {
+            let wavelength = need(spec.wavelength, "wavelength", k)?;
+            Irregularity::Corrugation {
+                amplitude: need(spec.amplitude, "amplitude", k)?,
+                wavelength,
+                start: spec
+                    .start
+                    .unwrap_or_else(|| corrugation_default_start(wavelength)),
+                end: spec.end.unwrap_or(f64::INFINITY).min(1e300),
+            }
+        }
         "random" => {
             let name = spec
                 .spectrum
@@ -757,4 +762,16 @@ fn check_irregularity_ranges(spec: &IrregularitySpec) -> Result<(), ConfigError>
     ranges::SPAN.check_opt("irregularity.lambda_min", spec.lambda_min)?;
     ranges::SPAN.check_opt("irregularity.lambda_max", spec.lambda_max)?;
     Ok(())
+}
+
+/// The start of a corrugation without `start`: a whole number of wavelengths before x = 0,
+/// about 1e7 m away, so the phase is that of a corrugation starting at x = 0 (r = a sin(2πx/λ))
+/// and x − x₀ keeps x to 2e-9 m (a start at −1e300 would round x away entirely). A wavelength
+/// that is not positive and finite is left to the irregularity's own check.
+fn corrugation_default_start(wavelength: f64) -> f64 {
+    if wavelength.is_finite() && wavelength > 0.0 {
+        -(1e7 / wavelength).ceil() * wavelength
+    } else {
+        -1e7
+    }
 }
