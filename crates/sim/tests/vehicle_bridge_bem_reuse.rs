@@ -124,7 +124,7 @@ fn compare(name: &str, text: &str, reuse_tol: f64, tol: f64) {
 }
 
 /// The default scenario (one quarter car, BEM 32 × 32, random irregularity) with
-/// reuse_tol = 3e-6 against full solves, within 1e-4 of the peaks (the target; the
+/// reuse_tol = 3e-6 against full solves, within 1e-4 of the peaks (the accuracy asked of the reuse; the
 /// peak midspan acceleration is the most sensitive: a step of the force error when a model is
 /// replaced excites the high modes).
 #[test]
