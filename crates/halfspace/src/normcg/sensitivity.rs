@@ -37,42 +37,11 @@ impl<A: InfluenceOperator> NormalSolver<A> {
             w.r[i] = if w.active[i] { 1.0 - w.q[i] } else { 0.0 };
         }
         let norm0 = count.sqrt();
-        let mut rz_prev = 0.0;
-        let mut iterations = 0;
-        loop {
-            let w = &self.work;
-            let rnorm = dot(&w.r, &w.r).sqrt();
-            if rnorm <= tol * norm0 {
-                break;
-            }
-            if iterations >= max_iter {
-                return Err(ContactError::SensitivityNotConverged {
-                    iterations,
-                    residual: rnorm / norm0,
-                });
-            }
-            iterations += 1;
-            self.operator.precondition(&self.work.r, &mut self.work.z);
-            self.convolutions += 1;
-            let w = &mut self.work;
-            mask(&mut w.z, &w.active);
-            let rz = dot(&w.r, &w.z);
-            let beta = if rz_prev > 0.0 { rz / rz_prev } else { 0.0 };
-            for i in 0..n {
-                w.v[i] = w.z[i] + beta * w.v[i];
-            }
-            rz_prev = rz;
-            self.operator.apply(&self.work.v, &mut self.work.q);
-            self.convolutions += 1;
-            let w = &mut self.work;
-            let alpha = rz / masked_dot(&w.v, &w.q, &w.active);
-            for i in 0..n {
-                w.r_prev[i] += alpha * w.v[i];
-                if w.active[i] {
-                    w.r[i] -= alpha * w.q[i];
-                }
-            }
-        }
+        // x out of the work space for the iteration (no allocation), back afterwards.
+        let mut x = std::mem::take(&mut self.work.r_prev);
+        let iterations = self.cg_on_set(&mut x, None, norm0, tol, max_iter);
+        self.work.r_prev = x;
+        let iterations = iterations?;
         let w = &self.work;
         let dfn = area * w.r_prev.iter().sum::<f64>();
         self.previous_sensitivity = Some(w.r_prev.clone());
@@ -119,6 +88,22 @@ impl<A: InfluenceOperator> NormalSolver<A> {
             };
         }
         let norm0 = norm0.sqrt();
+        self.cg_on_set(y, Some(displacement), norm0, tol, max_iter)
+    }
+
+    /// The preconditioned CG iteration on the contact set `work.active` shared by
+    /// [`Self::sensitivity`] and [`Self::solve_on_set`]: from the residual in `work.r` (zero
+    /// outside the set) of initial norm `norm0`, until ‖r‖ ≤ `tol` `norm0`; `y` += α v and,
+    /// when given, `displacement` += α A v at every iteration. Returns the iterations.
+    fn cg_on_set(
+        &mut self,
+        y: &mut [f64],
+        mut displacement: Option<&mut [f64]>,
+        norm0: f64,
+        tol: f64,
+        max_iter: usize,
+    ) -> Result<usize, ContactError> {
+        let n = y.len();
         let mut rz_prev = 0.0;
         let mut iterations = 0;
         loop {
@@ -150,7 +135,9 @@ impl<A: InfluenceOperator> NormalSolver<A> {
             let alpha = rz / masked_dot(&w.v, &w.q, &w.active);
             for i in 0..n {
                 y[i] += alpha * w.v[i];
-                displacement[i] += alpha * w.q[i];
+                if let Some(d) = displacement.as_deref_mut() {
+                    d[i] += alpha * w.q[i];
+                }
                 if w.active[i] {
                     w.r[i] -= alpha * w.q[i];
                 }
@@ -159,3 +146,4 @@ impl<A: InfluenceOperator> NormalSolver<A> {
         Ok(iterations)
     }
 }
+
