@@ -179,15 +179,7 @@ pub fn write_outputs(dir: &RunOutput, outcome: &CaseOutcome) -> Result<()> {
                 title,
                 x_label: "x [mm]",
                 y_label: "y [mm]",
-                field: plot::Field {
-                    nx: g.nx,
-                    ny: g.ny,
-                    x0: g.x0 * 1e3,
-                    y0: g.y0 * 1e3,
-                    dx: g.dx * 1e3,
-                    dy: g.dy * 1e3,
-                    values: &mpa,
-                },
+                field: plot::Field::on_grid_mm(&g, &mpa),
                 scale: plot::Scale::Continuous {
                     label: "p [MPa]",
                     exterior: Some((&outside, "no contact (p = 0)")),
@@ -238,15 +230,7 @@ fn write_tangential_outputs(dir: &RunOutput, t: &TangentialSolution) -> Result<(
         .map(|&s| s == ElementState::Exterior)
         .collect();
     let states: Vec<f64> = t.state.iter().map(|&s| state_code(s)).collect();
-    let grid_field = |values| plot::Field {
-        nx: g.nx,
-        ny: g.ny,
-        x0: g.x0 * 1e3,
-        y0: g.y0 * 1e3,
-        dx: g.dx * 1e3,
-        dy: g.dy * 1e3,
-        values,
-    };
+    let grid_field = |values| plot::Field::on_grid_mm(&g, values);
     if g.ny == 1 {
         // A single row (2-D case, e.g. Carter's): line plots along x.
         let cells = |values: &[f64]| -> Vec<(f64, f64)> {

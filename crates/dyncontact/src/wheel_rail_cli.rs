@@ -134,15 +134,7 @@ fn write_pressure(dir: &RunOutput, side: Side, sol: &WheelSolution) -> Result<()
                     ),
                     x_label: "x along the track [mm]",
                     y_label: "t across, in the contact plane [mm]",
-                    field: plot::Field {
-                        nx: g.nx,
-                        ny: g.ny,
-                        x0: g.x0 * 1e3,
-                        y0: g.y0 * 1e3,
-                        dx: g.dx * 1e3,
-                        dy: g.dy * 1e3,
-                        values: &mpa,
-                    },
+                    field: plot::Field::on_grid_mm(&g, &mpa),
                     scale: plot::Scale::Continuous {
                         label: "p [MPa]",
                         exterior: Some((&outside, "no contact (p = 0)")),

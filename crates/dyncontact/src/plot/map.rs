@@ -23,6 +23,21 @@ pub struct Field<'a> {
     pub values: &'a [f64],
 }
 
+impl<'a> Field<'a> {
+    /// `values` on a contact grid, drawn in millimetres.
+    pub fn on_grid_mm(g: &halfspace::Grid, values: &'a [f64]) -> Self {
+        Self {
+            nx: g.nx,
+            ny: g.ny,
+            x0: g.x0 * 1e3,
+            y0: g.y0 * 1e3,
+            dx: g.dx * 1e3,
+            dy: g.dy * 1e3,
+            values,
+        }
+    }
+}
+
 /// How a map colours its cells.
 pub enum Scale<'a> {
     /// A continuous colour bar (viridis) labelled `label`; cells where `exterior` is true are

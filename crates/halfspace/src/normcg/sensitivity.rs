@@ -146,4 +146,3 @@ impl<A: InfluenceOperator> NormalSolver<A> {
         Ok(iterations)
     }
 }
-
