@@ -301,7 +301,8 @@ def run(scenario: Case) -> Dict[str, Any]:
     table}``: the summary holds the run's key numbers under the names of the CLI's
     ``summary.json`` (``max_midspan_deflection`` [m], ``max_midspan_acceleration`` [m/s²],
     ``dynamic_amplification``, ``contact`` (``max_force``, ``min_force`` [N], ``max_pressure``
-    [Pa], ``loss_of_contact_events``, ``max_unloading_ratio``), ``vehicle``, ``solver``,
+    [Pa], ``loss_of_contact_events``, ``max_unloading_ratio``; BEM contact also
+    ``full_solves``, ``reused_evaluations``, ``max_reuse_error_estimate``), ``vehicle``, ``solver``,
     ``warnings``, and for trains ``vehicles`` (per bogie or articulated vehicle
     ``max_body_acceleration`` [m/s²], ``max_body_pitch_acceleration`` [rad/s²],
     ``max_bogie_acceleration`` [m/s²]), ``train`` (``name``, ``axles``, ``length`` [m],
@@ -341,6 +342,8 @@ def run(scenario: Case) -> Dict[str, Any]:
     summary = d["summary"]
     extra = json.loads(d["train_json"])
     summary["contact"]["max_unloading_ratio"] = extra["max_unloading_ratio"]
+    if extra.get("contact_solves") is not None:
+        summary["contact"].update(extra["contact_solves"])
     for key in ("vehicles", "train", "comfort"):
         if extra[key] is not None:
             summary[key] = extra[key]

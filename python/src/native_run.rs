@@ -190,7 +190,8 @@ fn run_moving_load(
 struct RunData {
     summary: sim::vehicle_bridge::RunSummary,
     /// The train's part of summary.json (`vehicles`, `train`, `comfort`,
-    /// `max_unloading_ratio`) as JSON text (`sim::train_response`).
+    /// `max_unloading_ratio`; BEM contact: the solve counts of `contact`) as JSON text
+    /// (`sim::train_response`).
     train_json: String,
     columns: Vec<String>,
     series: Vec<f64>,
@@ -280,6 +281,11 @@ fn run_vehicle_bridge(text: &str, base: &str, stop: &std::sync::atomic::AtomicBo
                     sim::train_response::ComfortSummary::of(summary.max_body_acceleration())
                 }),
                 "max_unloading_ratio": monitor.max_unloading_ratio(),
+                "contact_solves": sim.contact_solves().map(|c| serde_json::json!({
+                    "full_solves": c.full_solves,
+                    "reused_evaluations": c.reused,
+                    "max_reuse_error_estimate": c.max_estimate,
+                })),
             })
             .to_string(),
             summary,

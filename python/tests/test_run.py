@@ -31,6 +31,11 @@ def test_vehicle_bridge_run_equals_the_cli(name, tmp_path):
         assert s[key] == cli[key], key
     for key in ("max_force", "min_force", "loss_of_contact_events", "max_unloading_ratio"):
         assert s["contact"][key] == cli["contact"][key], key
+    # BEM contact only: the solve counts of the reuse ([contact] reuse_tol).
+    for key in ("full_solves", "reused_evaluations", "max_reuse_error_estimate"):
+        assert (key in s["contact"]) == (key in cli["contact"]), key
+        if key in cli["contact"]:
+            assert s["contact"][key] == cli["contact"][key], key
     # The train's part (trains only): per-vehicle peaks, the train, the comfort level.
     for key in ("vehicles", "train", "comfort"):
         assert (key in s) == (key in cli), key
