@@ -155,3 +155,30 @@ fn a_train_of_moving_forces_only_is_refused_with_the_remedy() {
         "{e}"
     );
 }
+
+/// Moving forces trailing the wheels set the run's length (until the rearmost of them has
+/// left the span), and a random irregularity is tabulated over the whole of it: the leading
+/// wheel still sees the profile at the end of the run (the table once ended where the last
+/// wheel, not the last force, left the span, and beyond it the profile read zero).
+#[test]
+fn trailing_moving_forces_set_the_run_length_and_the_profile_covers_it() {
+    let text = format!(
+        "kind = \"vehicle_bridge\"\n{BRIDGE}[train]\nspeed = 60.0\nposition = 0.0\n[[train.vehicles]]\ntype = \"quarter_car\"\nlength = 100.0\nwheel_mass = 1800.0\nbody_mass = 9000.0\nsuspension_stiffness = 1.0e6\nsuspension_damping = 2.0e4\n[[train.vehicles]]\ntype = \"moving_forces\"\nlength = 10.0\naxle_positions = [0.0]\naxle_loads = [1.7e5]\n[irregularity]\nkind = \"random\"\nspectrum = \"german_low\"\nlambda_min = 1.0\nlambda_max = 30.0\ncomponents = 50\nseed = 3\n[contact]\nmodel = \"hertz\"\n"
+    );
+    let sim = simulation(&text);
+    // The force starts 100 m behind the wheel: the run ends when it leaves the 25 m span.
+    let end = sim.end_time();
+    assert!((end - 125.0 / 60.0).abs() < 1e-12, "{end}");
+    // Where the wheel is at the end: the profile is still there (a random profile is zero
+    // only at isolated points; check a short stretch).
+    let x_end = 60.0 * end;
+    let largest = (0..20)
+        .map(|i| {
+            sim.scenario()
+                .irregularity
+                .height(x_end - 0.05 * i as f64)
+                .abs()
+        })
+        .fold(0.0f64, f64::max);
+    assert!(largest > 1e-6, "profile {largest} m near x = {x_end} m");
+}

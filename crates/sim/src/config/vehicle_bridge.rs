@@ -673,17 +673,11 @@ pub fn default_dt(s: &Scenario) -> Result<f64, ConfigError> {
     Ok(dt)
 }
 
-/// The simulated time of a scenario: `integrator.duration`, or until the first wheel has
-/// left the span (as [`crate::vehicle_bridge::Simulation::end_time`]).
+/// The simulated time of a scenario: `integrator.duration`, or until the rearmost wheel or
+/// moving force has left the span (as [`crate::vehicle_bridge::Simulation::end_time`]).
 fn end_time(s: &Scenario) -> f64 {
-    s.duration.unwrap_or_else(|| {
-        let first = s
-            .wheels
-            .iter()
-            .map(|w| w.position)
-            .fold(f64::INFINITY, f64::min);
-        ((s.bridge.length() - first) / s.speed).max(0.0)
-    })
+    s.duration
+        .unwrap_or_else(|| ((s.bridge.length() - s.rearmost_position()) / s.speed).max(0.0))
 }
 
 /// Steps, output rows and the irregularity's setup work of the run, refused when absurd (the

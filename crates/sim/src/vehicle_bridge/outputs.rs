@@ -56,7 +56,7 @@ impl Simulation {
     /// Total simulated time of a [`run`](Self::run) \[s\].
     pub fn end_time(&self) -> f64 {
         self.scenario.duration.unwrap_or_else(|| {
-            let first = super::scenario::first_position(&self.scenario);
+            let first = self.scenario.rearmost_position();
             ((self.scenario.bridge.length() - first) / self.scenario.speed).max(0.0)
         })
     }

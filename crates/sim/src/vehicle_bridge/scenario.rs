@@ -262,7 +262,7 @@ pub(super) fn validate(scenario: &mut Scenario) -> Result<(), VehicleBridgeError
     }
     {
         // The step count is checked before anything is allocated or run.
-        let first = first_position(scenario);
+        let first = scenario.rearmost_position();
         let end = scenario
             .duration
             .unwrap_or(((length - first) / scenario.speed).max(0.0));
@@ -287,9 +287,10 @@ pub(super) fn validate(scenario: &mut Scenario) -> Result<(), VehicleBridgeError
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), w| {
                 (lo.min(w.position), hi.max(w.position))
             });
-        let duration = scenario
-            .duration
-            .unwrap_or((scenario.bridge.length() - lo) / scenario.speed);
+        // The run lasts until the rearmost wheel or moving force has left the span.
+        let duration = scenario.duration.unwrap_or(
+            ((scenario.bridge.length() - scenario.rearmost_position()) / scenario.speed).max(0.0),
+        );
         scenario.irregularity = scenario
             .irregularity
             .tabulated(lo - 1.0, hi + scenario.speed * duration + 1.0);
@@ -368,13 +369,14 @@ pub(super) fn validate(scenario: &mut Scenario) -> Result<(), VehicleBridgeError
     Ok(())
 }
 
-/// The position of the rearmost wheel or moving force at t = 0 \[m\] (the run without a
-/// `duration` ends when it has left the span).
-pub(super) fn first_position(scenario: &Scenario) -> f64 {
-    scenario
-        .wheels
-        .iter()
-        .map(|w| w.position)
-        .chain(scenario.moving_forces.iter().map(|f| f.position))
-        .fold(f64::INFINITY, f64::min)
+impl Scenario {
+    /// The position of the rearmost wheel or moving force at t = 0 \[m\] (a run without a
+    /// `duration` ends when it has left the span).
+    pub fn rearmost_position(&self) -> f64 {
+        self.wheels
+            .iter()
+            .map(|w| w.position)
+            .chain(self.moving_forces.iter().map(|f| f.position))
+            .fold(f64::INFINITY, f64::min)
+    }
 }
