@@ -54,6 +54,7 @@ pub mod checks;
 pub mod contact;
 pub mod cost;
 pub mod integrator;
+pub mod irregularity;
 pub mod moving_load;
 pub mod sweep;
 pub mod train;

@@ -8,12 +8,17 @@ use super::ConfigError;
 use super::bridge::BridgeSpec;
 use super::checks::{self, MAX_ITERATIONS, ranges};
 use super::integrator::StructuralParameters;
+use super::irregularity::irregularity;
+pub use super::irregularity::{
+    DEFAULT_IRREGULARITY_COMPONENTS, DEFAULT_LAMBDA_MAX, DEFAULT_LAMBDA_MIN, IrregularitySpec,
+    MAX_IRREGULARITY_WORK,
+};
 pub use super::train_wheels::MAX_ARTICULATED_BODIES;
 use super::train_wheels::train_wheels;
 use crate::vehicle_bridge::traction::{TractionDrive, TractionMethod, TractionSpec};
 use crate::vehicle_bridge::{
     ContactGeometry, ContactModel, CouplingSolver, CouplingSpec, GRAVITY, Integrator, Irregularity,
-    Radau5Spec, Scenario, TrackSpectrum, WheelSpec,
+    Radau5Spec, Scenario, WheelSpec,
 };
 
 /// Default contact geometry and material: a 0.92 m wheel (R = 0.46 m) on a rail head of
@@ -54,15 +59,6 @@ pub const DEFAULT_SNAPSHOTS: usize = 6;
 pub const MAX_SNAPSHOTS: usize = 1000;
 /// Default FASTSIM elements per direction of `[traction]`.
 pub const DEFAULT_FASTSIM_ELEMENTS: usize = 40;
-/// Default shortest wavelength of a random irregularity \[m\].
-pub const DEFAULT_LAMBDA_MIN: f64 = 1.0;
-/// Default longest wavelength of a random irregularity \[m\].
-pub const DEFAULT_LAMBDA_MAX: f64 = 50.0;
-/// Default number of cosines of a random irregularity.
-pub const DEFAULT_IRREGULARITY_COMPONENTS: usize = 500;
-/// Largest setup work of a random irregularity (table points × cosines).
-pub const MAX_IRREGULARITY_WORK: f64 = 2e9;
-
 /// A validated vehicle–bridge scenario.
 pub struct VehicleBridgeConfig {
     /// The scenario of [`crate::vehicle_bridge::Simulation::new`].
@@ -183,25 +179,6 @@ pub struct ContactSpec {
     pub grid: Option<usize>,
     pub bem_tol: Option<f64>,
     pub reuse_tol: Option<f64>,
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct IrregularitySpec {
-    pub kind: String,
-    pub position: Option<f64>,
-    pub length: Option<f64>,
-    pub depth: Option<f64>,
-    pub height: Option<f64>,
-    pub amplitude: Option<f64>,
-    pub wavelength: Option<f64>,
-    pub start: Option<f64>,
-    pub end: Option<f64>,
-    pub spectrum: Option<String>,
-    pub lambda_min: Option<f64>,
-    pub lambda_max: Option<f64>,
-    pub components: Option<usize>,
-    pub seed: Option<u64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -486,81 +463,6 @@ fn reuse_tol(v: Option<f64>) -> Result<f64, ConfigError> {
     Ok(v)
 }
 
-fn need(v: Option<f64>, key: &str, kind: &str) -> Result<f64, ConfigError> {
-    v.ok_or_else(|| invalid!("[irregularity] kind = \"{kind}\" needs `{key}`"))
-}
-
-fn irregularity(spec: &IrregularitySpec, wheel_radius: f64) -> Result<Irregularity, ConfigError> {
-    let k = spec.kind.as_str();
-    let irr = match k {
-        "none" => Irregularity::None,
-        "dip" | "dipped_joint" => Irregularity::Dip {
-            position: need(spec.position, "position", k)?,
-            length: need(spec.length, "length", k)?,
-            depth: need(spec.depth, "depth", k)?,
-        },
-        "ramp" => Irregularity::Ramp {
-            position: need(spec.position, "position", k)?,
-            length: need(spec.length, "length", k)?,
-            height: need(spec.height, "height", k)?,
-        },
-        "wheel_flat" => {
-            let length = need(spec.length, "length", k)?;
-            // A fresh flat of chord ℓ has depth ℓ²/(8R) (references.md §D2.5) unless given.
-            let depth = spec.depth.unwrap_or(length * length / (8.0 * wheel_radius));
-            Irregularity::WheelFlat {
-                position: spec.position.unwrap_or(0.0),
-                length,
-                depth,
-                wheel_radius,
-            }
-        }
-        "corrugation" => {
-            let wavelength = need(spec.wavelength, "wavelength", k)?;
-            Irregularity::Corrugation {
-                amplitude: need(spec.amplitude, "amplitude", k)?,
-                wavelength,
-                start: spec
-                    .start
-                    .unwrap_or_else(|| corrugation_default_start(wavelength)),
-                end: spec.end.unwrap_or(f64::INFINITY).min(1e300),
-            }
-        }
-        "random" => {
-            let name = spec
-                .spectrum
-                .as_deref()
-                .ok_or_else(|| invalid!("[irregularity] kind = \"random\" needs `spectrum`"))?;
-            let spectrum = TrackSpectrum::by_name(name).ok_or_else(|| {
-                invalid!(
-                    "[irregularity] `spectrum` = \"{name}\": expected fra1 … fra6, german_low or german_high"
-                )
-            })?;
-            let components = checks::count(
-                "irregularity.components",
-                spec.components.unwrap_or(DEFAULT_IRREGULARITY_COMPONENTS),
-                1,
-                checks::MAX_IRREGULARITY_COMPONENTS,
-            )?;
-            Irregularity::random(
-                spectrum,
-                spec.lambda_min.unwrap_or(DEFAULT_LAMBDA_MIN),
-                spec.lambda_max.unwrap_or(DEFAULT_LAMBDA_MAX),
-                components,
-                spec.seed.unwrap_or(1),
-            )
-            .map_err(|e| invalid!("{e}"))?
-        }
-        other => bail!(
-            "[irregularity] `kind` = \"{other}\": expected none, dip, ramp, wheel_flat, corrugation or random"
-        ),
-    };
-    irr.validate().map_err(|e| invalid!("{e}"))?;
-    check_irregularity_ranges(spec)?;
-    Ok(irr)
-}
-
-/// Physical ranges of the keys (after the sign checks above, whose messages are kept).
 pub(crate) fn check_ranges(s: &Scenario) -> Result<(), ConfigError> {
     for (k, w) in s.wheels.iter().enumerate() {
         let key = |f: &str| format!("vehicle.wheels[{k}].{f}");
@@ -741,31 +643,4 @@ fn check_coupling(s: &Scenario) -> Result<(), ConfigError> {
         );
     }
     Ok(())
-}
-
-/// Ranges of the `[irregularity]` keys.
-fn check_irregularity_ranges(spec: &IrregularitySpec) -> Result<(), ConfigError> {
-    ranges::POSITION.check_opt("irregularity.position", spec.position)?;
-    ranges::SPAN.check_opt("irregularity.length", spec.length)?;
-    ranges::SMALL_DISPLACEMENT.check_opt("irregularity.depth", spec.depth)?;
-    ranges::SMALL_DISPLACEMENT.check_opt("irregularity.height", spec.height)?;
-    ranges::SMALL_DISPLACEMENT.check_opt("irregularity.amplitude", spec.amplitude)?;
-    ranges::SPAN.check_opt("irregularity.wavelength", spec.wavelength)?;
-    ranges::POSITION.check_opt("irregularity.start", spec.start)?;
-    ranges::POSITION.check_opt("irregularity.end", spec.end)?;
-    ranges::SPAN.check_opt("irregularity.lambda_min", spec.lambda_min)?;
-    ranges::SPAN.check_opt("irregularity.lambda_max", spec.lambda_max)?;
-    Ok(())
-}
-
-/// The start of a corrugation without `start`: a whole number of wavelengths before x = 0,
-/// about 1e7 m away, so the phase is that of a corrugation starting at x = 0 (r = a sin(2πx/λ))
-/// and x − x₀ keeps x to 2e-9 m (a start at −1e300 would round x away entirely). A wavelength
-/// that is not positive and finite is left to the irregularity's own check.
-fn corrugation_default_start(wavelength: f64) -> f64 {
-    if wavelength.is_finite() && wavelength > 0.0 {
-        -(1e7 / wavelength).ceil() * wavelength
-    } else {
-        -1e7
-    }
 }
