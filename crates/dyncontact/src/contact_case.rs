@@ -224,6 +224,21 @@ fn write_tangential_outputs(dir: &RunOutput, t: &TangentialSolution) -> Result<(
     )?;
     let field = |values: &[f64]| -> Vec<f64> { values.iter().map(|v| v * 1e-6).collect() };
     let (px, py) = (field(&t.traction_x), field(&t.traction_y));
+    // (file, title, axis label, values in MPa) of the two traction components.
+    let tractions = [
+        (
+            "traction_x.png",
+            "tangential traction p_x",
+            "p_x [MPa]",
+            &px,
+        ),
+        (
+            "traction_y.png",
+            "tangential traction p_y",
+            "p_y [MPa]",
+            &py,
+        ),
+    ];
     let exterior: Vec<bool> = t
         .state
         .iter()
@@ -236,20 +251,7 @@ fn write_tangential_outputs(dir: &RunOutput, t: &TangentialSolution) -> Result<(
         let cells = |values: &[f64]| -> Vec<(f64, f64)> {
             (0..g.nx).map(|ix| (g.x(ix) * 1e3, values[ix])).collect()
         };
-        for (name, title, label, values) in [
-            (
-                "traction_x.png",
-                "tangential traction p_x",
-                "p_x [MPa]",
-                &px,
-            ),
-            (
-                "traction_y.png",
-                "tangential traction p_y",
-                "p_y [MPa]",
-                &py,
-            ),
-        ] {
+        for (name, title, label, values) in tractions {
             plot::panels(
                 &dir.path(name),
                 &[plot::Panel {
@@ -284,20 +286,7 @@ fn write_tangential_outputs(dir: &RunOutput, t: &TangentialSolution) -> Result<(
         )?;
         return Ok(());
     }
-    for (name, title, label, values) in [
-        (
-            "traction_x.png",
-            "tangential traction p_x",
-            "p_x [MPa]",
-            &px,
-        ),
-        (
-            "traction_y.png",
-            "tangential traction p_y",
-            "p_y [MPa]",
-            &py,
-        ),
-    ] {
+    for (name, title, label, values) in tractions {
         plot::map(
             &dir.path(name),
             &plot::Map {

@@ -8,7 +8,7 @@
 //! stored energy W = Σ ½ ΔA Σ p_e u_e (Clapeyron: the work of F over δ). One column at ξ = 0:
 //! a column gap correction c(0) shifts the approach to δ − c(0).
 
-use halfspace::law::{ContactLaw, LawOutput};
+use halfspace::law::{ContactLaw, LawOutput, single_column_approach};
 use halfspace::{ContactError, Grid, Material};
 
 use crate::error::WheelRailError;
@@ -101,14 +101,7 @@ impl ContactLaw for ProfileLaw {
         column_force: &mut [f64],
         _tangent: bool,
     ) -> Result<LawOutput, ContactError> {
-        if !delta.is_finite() {
-            return Err(ContactError::InvalidParameter {
-                name: "approach",
-                value: delta,
-                reason: "must be finite",
-            });
-        }
-        let d = delta - column_gap.first().copied().unwrap_or(0.0);
+        let d = single_column_approach(delta, column_gap, column_force)?;
         if d < MIN_APPROACH {
             self.last = None;
             column_force.iter_mut().for_each(|f| *f = 0.0);

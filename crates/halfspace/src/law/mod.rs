@@ -168,8 +168,9 @@ impl ContactModel {
 }
 
 /// The approach δ − c₀ of a law with one column (a point or line contact), after checking
-/// the column slices and that δ is finite.
-pub(crate) fn single_column_approach(
+/// the column slices and that δ is finite: the input check of every one-column
+/// [`ContactLaw::evaluate`], also for laws outside this crate.
+pub fn single_column_approach(
     delta: f64,
     column_gap: &[f64],
     column_force: &[f64],
