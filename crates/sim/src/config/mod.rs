@@ -52,6 +52,7 @@ pub mod ball_drop;
 pub mod bridge;
 pub mod checks;
 pub mod contact;
+mod contact_tangential;
 pub mod cost;
 pub mod integrator;
 pub mod irregularity;
