@@ -1,7 +1,8 @@
 //! `dyncontact bench tangential`: steady rolling of CONTACT's `tractcurv` ellipse with
-//! creepage prescribed, by the default Newton–Krylov solver and the Gauss–Seidel reference:
-//! a 44 × 44 table over ξ (cold and warm starts), the cost against the grid size (44², 100²,
-//! 200²: time, iterations, operator products and FFT convolutions per solve), the 41-point
+//! creepage prescribed, by the default Newton–Krylov solver (upstream line preconditioner),
+//! the same with the Jacobi preconditioner and the Gauss–Seidel reference: a 44 × 44 table
+//! over ξ (cold and warm starts), the cost against the grid size (44² … 400²: time,
+//! iterations, operator products and FFT convolutions per solve), the 41-point
 //! creep curve at 44 × 44, and the shift and transient-rolling solves (which the steady
 //! solver does not touch) for before/after comparisons.
 
@@ -9,8 +10,8 @@ use std::time::Instant;
 
 use anyhow::{Result, anyhow};
 use halfspace::{
-    Creepages, FastsimInput, GapShape, Grid, Hertz, Material, NormalLoad, NormalSolution,
-    NormalSolver, RollingLoad, ShiftLoad, SolverOptions, SteadySolver, StepMotion,
+    Creepages, FastsimInput, GapShape, Grid, Hertz, Material, NkPreconditioner, NormalLoad,
+    NormalSolution, NormalSolver, RollingLoad, ShiftLoad, SolverOptions, SteadySolver, StepMotion,
     TangentialOptions, TangentialSolver, fastsim,
 };
 
@@ -39,17 +40,36 @@ fn tractcurv(n: usize) -> Result<(Grid, Material, NormalSolution, Hertz)> {
     Ok((grid, m, normal, h))
 }
 
-fn options(solver: SteadySolver) -> TangentialOptions {
+/// The steady-rolling solvers compared: Newton–Krylov with the upstream line preconditioner
+/// (the default), with the Jacobi preconditioner (the default before), and the Gauss–Seidel
+/// reference.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Solver {
+    Line,
+    Jacobi,
+    GaussSeidel,
+}
+
+const SOLVERS: [Solver; 3] = [Solver::Line, Solver::Jacobi, Solver::GaussSeidel];
+
+fn options(solver: Solver) -> TangentialOptions {
+    let (steady_solver, nk_preconditioner) = match solver {
+        Solver::Line => (SteadySolver::NewtonKrylov, NkPreconditioner::UpstreamLine),
+        Solver::Jacobi => (SteadySolver::NewtonKrylov, NkPreconditioner::Jacobi),
+        Solver::GaussSeidel => (SteadySolver::GaussSeidel, NkPreconditioner::default()),
+    };
     TangentialOptions {
-        steady_solver: solver,
+        steady_solver,
+        nk_preconditioner,
         ..Default::default()
     }
 }
 
-fn name(solver: SteadySolver) -> &'static str {
+fn name(solver: Solver) -> &'static str {
     match solver {
-        SteadySolver::NewtonKrylov => "NK",
-        SteadySolver::GaussSeidel => "GS",
+        Solver::Line => "NK",
+        Solver::Jacobi => "NK-J",
+        Solver::GaussSeidel => "GS",
     }
 }
 
@@ -79,14 +99,14 @@ fn xi_table() -> Result<()> {
         rayon::current_num_threads()
     );
     println!(
-        "(NK: Newton-Krylov, the default, iterations = Newton steps; GS: Gauss-Seidel reference, iterations = sweeps; products = operator products, 4 FFT convolutions each)"
+        "(NK: Newton-Krylov with the upstream line preconditioner, the default; NK-J: with the Jacobi preconditioner, the default before; iterations = Newton steps; GS: Gauss-Seidel reference, iterations = sweeps; products = operator products, 4 FFT convolutions each)"
     );
     println!(
         "{:>10} {:>7} {:>13} {:>6} {:>6} {:>6} {:>6} {:>9} {:>10}",
         "xi", "solver", "Fx/muFn", "start", "adh", "slip", "iters", "products", "time ms"
     );
     for xi in [1e-5, 3e-4, 1e-3, 3e-3] {
-        for solver in [SteadySolver::NewtonKrylov, SteadySolver::GaussSeidel] {
+        for solver in SOLVERS {
             let opts = options(solver);
             for warm in [false, true] {
                 let mut ts = TangentialSolver::new(grid, m).map_err(|e| anyhow!("{e}"))?;
@@ -119,7 +139,8 @@ fn xi_table() -> Result<()> {
 }
 
 /// Cost per solve against the grid size at ξ = 1e-3, cold start. The Gauss–Seidel reference
-/// is run up to 100 × 100 (its dense column updates cost O(n_c²) per sweep).
+/// is run up to 100 × 100 (its dense column updates cost O(n_c²) per sweep), the Jacobi
+/// Newton–Krylov solver up to 300 × 300.
 fn grid_table() -> Result<()> {
     println!();
     println!("steady rolling, tractcurv, xi = 1e-3, cold start, against the grid size:");
@@ -137,10 +158,10 @@ fn grid_table() -> Result<()> {
         "time ms",
         "ms/product"
     );
-    for n in [44, 100, 200] {
+    for n in [44, 100, 200, 300, 400] {
         let (grid, m, normal, _) = tractcurv(n)?;
-        for solver in [SteadySolver::NewtonKrylov, SteadySolver::GaussSeidel] {
-            if solver == SteadySolver::GaussSeidel && n > 100 {
+        for solver in SOLVERS {
+            if (solver == Solver::GaussSeidel && n > 100) || (solver == Solver::Jacobi && n > 300) {
                 continue;
             }
             let mut ts = TangentialSolver::new(grid, m).map_err(|e| anyhow!("{e}"))?;
@@ -173,7 +194,7 @@ fn grid_table() -> Result<()> {
 fn creep_curve() -> Result<()> {
     let (grid, m, normal, h) = tractcurv(44)?;
     println!();
-    for solver in [SteadySolver::NewtonKrylov, SteadySolver::GaussSeidel] {
+    for solver in SOLVERS {
         let opts = options(solver);
         let mut ts = TangentialSolver::new(grid, m).map_err(|e| anyhow!("{e}"))?;
         let t = Instant::now();

@@ -203,8 +203,9 @@ enum BenchTarget {
     /// The default vehicle-bridge scenario with BEM contact (32 × 32) at every step, Picard
     /// and quasi-Newton coupling: wall time per step, simulated/wall time, iterations.
     Coupling,
-    /// Tangential contact: steady rolling (Newton–Krylov and Gauss–Seidel) on 44² … 200² (time,
-    /// iterations, FFT products), a 41-point creep curve, a shift and transient rolling.
+    /// Tangential contact: steady rolling (Newton–Krylov with the line and the Jacobi
+    /// preconditioner, Gauss–Seidel) on 44² … 400² (time, iterations, FFT products), a 41-point
+    /// creep curve, a shift and transient rolling.
     Tangential,
     /// The HSLM-A envelope on a 20 m simply supported bridge (f1 = 5 Hz, 3 modes): 10 trains ×
     /// 57 speeds, 140 … 420 km/h.

@@ -75,6 +75,6 @@ pub use operator::{
 pub use solution::NormalSolution;
 pub use strategy::{TangentialMethod, TangentialStrategy, tangential_strategy};
 pub use tangential::{
-    Creepages, ElementState, RollingLoad, ShiftLoad, SteadySolver, StepMotion, TangentialOptions,
-    TangentialSolution, TangentialSolver,
+    Creepages, ElementState, NkPreconditioner, RollingLoad, ShiftLoad, SteadySolver, StepMotion,
+    TangentialOptions, TangentialSolution, TangentialSolver,
 };

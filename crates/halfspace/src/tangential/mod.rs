@@ -56,13 +56,18 @@
 //! Equations F = 0: S_I = 0 in adhesion, S_I · t_I = 0 in slip (t_I = (−sin θ_I, cos θ_I):
 //! S opposite to p). Each Newton step computes S (one FFT product), moves adhesion elements
 //! beyond the bound to slip and slip elements with S·p > 0 to adhesion, and solves J d = −F
-//! matrix-free by restarted GMRES (one FFT product per iteration, Jacobi preconditioner) to a
-//! relative residual η (0.1; tightened on the last steps so that the remaining error
-//! η‖Δp‖ ≤ tol‖p‖). J: adhesion rows C, slip columns C g t, slip rows t·(…) plus the diagonal
-//! −p̂·S = |S|. It stops when the split is settled, every adhesion element is within its bound
+//! matrix-free by restarted GMRES (one FFT product per iteration) to a relative residual η
+//! (0.1; tightened on the last steps so that the remaining error η‖Δp‖ ≤ tol‖p‖). The
+//! preconditioner ([`NkPreconditioner`], references.md §C3.10) is by default the upstream line
+//! solve: C(−1, 0) = −C(0, 0) (A_v(δx) is A moved by one element), so J is dominated by a
+//! discrete derivative along x; its diagonal and upstream-neighbour blocks are solved exactly
+//! by marching each grid row from the leading edge, O(N) per application. The diagonal of J
+//! (Jacobi, the earlier default) is kept for comparison. J: adhesion rows C, slip columns
+//! C g t, slip rows t·(…) plus the diagonal −p̂·S = |S|. It stops when the split is settled, every adhesion element is within its bound
 //! and η‖Δp‖_rms ≤ tol‖p‖_rms; if it does not within min(`max_iter`, 100) steps the Gauss–Seidel
 //! reference continues from its iterate ([`TangentialSolution::steady_fallback`]). Files
-//! `steady_nk.rs` (the Newton iteration and J) and `gmres.rs`.
+//! `steady_nk.rs` (the Newton iteration and J), `nk_precondition.rs` (the preconditioners) and
+//! `gmres.rs`.
 //!
 //! **Prescribed forces.** Newton's method on (ξ, η) (rolling) or (w_x, w_y) (shift), with the
 //! 2 × 2 Jacobian by forward differences and step halving, started from the full-adhesion
@@ -90,6 +95,7 @@ mod anderson;
 mod coupling;
 mod gmres;
 mod newton;
+mod nk_precondition;
 mod steady_nk;
 mod sweep;
 
@@ -162,13 +168,27 @@ pub struct StepMotion {
 /// The solver of steady rolling (module documentation).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum SteadySolver {
-    /// Semismooth Newton–Krylov on the adhesion/slip split with FFT products and an FFT
-    /// preconditioner (the default); falls back to [`Self::GaussSeidel`] if it does not
-    /// converge.
+    /// Semismooth Newton–Krylov on the adhesion/slip split with FFT products and the
+    /// preconditioner of [`TangentialOptions::nk_preconditioner`] (the default); falls back to
+    /// [`Self::GaussSeidel`] if it does not converge.
     #[default]
     NewtonKrylov,
     /// SteadyGS-type Gauss–Seidel sweeps with Anderson acceleration (the reference).
     GaussSeidel,
+}
+
+/// The preconditioner of the linear systems of the steady-rolling Newton–Krylov solver
+/// (module documentation; references.md §C3.10).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum NkPreconditioner {
+    /// The diagonal blocks of the Jacobian and the coupling of each element to its upstream
+    /// neighbour (one element towards the leading edge), solved exactly by marching each grid
+    /// row from the leading edge (the default).
+    #[default]
+    UpstreamLine,
+    /// The diagonal of the Jacobian (the solver's preconditioner before the line solve; kept
+    /// for comparison).
+    Jacobi,
 }
 
 /// Controls of the tangential iteration.
@@ -193,6 +213,8 @@ pub struct TangentialOptions {
     pub anderson_depth: usize,
     /// The steady-rolling solver (default [`SteadySolver::NewtonKrylov`]).
     pub steady_solver: SteadySolver,
+    /// The preconditioner of its linear systems (default [`NkPreconditioner::UpstreamLine`]).
+    pub nk_preconditioner: NkPreconditioner,
 }
 
 impl Default for TangentialOptions {
@@ -206,6 +228,7 @@ impl Default for TangentialOptions {
             warm_start: true,
             anderson_depth: 3,
             steady_solver: SteadySolver::NewtonKrylov,
+            nk_preconditioner: NkPreconditioner::UpstreamLine,
         }
     }
 }

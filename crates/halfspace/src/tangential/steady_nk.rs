@@ -2,16 +2,9 @@
 //! (module documentation of [`super`], "Steady-rolling solver").
 
 use super::gmres::{LinearProblem, gmres};
-use super::{TangentialOptions, TangentialSolver};
+use super::nk_precondition::{Class, NewtonSystem};
+use super::{NkPreconditioner, TangentialOptions, TangentialSolver};
 use crate::operator::{TangentialInfluenceOperator, TangentialKernel, Update};
-
-/// Element class during the iteration.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Class {
-    Exterior,
-    Adhesion,
-    Slip,
-}
 
 /// GMRES restart length.
 const RESTART: usize = 40;
@@ -24,14 +17,7 @@ const MAX_NEWTON: usize = 100;
 /// The Newton system J d = −F of one iteration, matrix-free (module documentation).
 struct Jacobian<'a, T: TangentialInfluenceOperator> {
     op: &'a mut T,
-    class: &'a [Class],
-    /// Unit tangent t = (−sin θ, cos θ) of the slip elements.
-    tx: &'a [f64],
-    ty: &'a [f64],
-    /// −p̂·S ≥ 0 of the slip elements (the slip speed |S| at the solution).
-    slip_speed: &'a [f64],
-    bound: &'a [f64],
-    own: (f64, f64),
+    sys: NewtonSystem<'a>,
     products: usize,
     wx: Vec<f64>,
     wy: Vec<f64>,
@@ -43,16 +29,10 @@ impl<T: TangentialInfluenceOperator> LinearProblem for Jacobian<'_, T> {
     /// x holds (d_x, d_y) of the adhesion elements in the slots k and n + k, dθ of the slip
     /// elements in slot k.
     fn apply(&mut self, x: &[f64], out: &mut [f64]) {
-        let n = self.class.len();
+        let sys = &self.sys;
+        let n = sys.class.len();
         for k in 0..n {
-            (self.ux[k], self.uy[k]) = match self.class[k] {
-                Class::Exterior => (0.0, 0.0),
-                Class::Adhesion => (x[k], x[n + k]),
-                Class::Slip => {
-                    let g = self.bound[k] * x[k];
-                    (g * self.tx[k], g * self.ty[k])
-                }
-            };
+            (self.ux[k], self.uy[k]) = sys.traction_change(x, k);
         }
         self.op.traction_product(
             TangentialKernel::Steady,
@@ -62,33 +42,20 @@ impl<T: TangentialInfluenceOperator> LinearProblem for Jacobian<'_, T> {
         );
         self.products += 1;
         for k in 0..n {
-            (out[k], out[n + k]) = match self.class[k] {
+            (out[k], out[n + k]) = match sys.class[k] {
                 Class::Exterior => (0.0, 0.0),
                 Class::Adhesion => (self.wx[k], self.wy[k]),
                 Class::Slip => (
-                    self.tx[k] * self.wx[k] + self.ty[k] * self.wy[k] + self.slip_speed[k] * x[k],
+                    sys.tx[k] * self.wx[k] + sys.ty[k] * self.wy[k] + sys.slip_speed[k] * x[k],
                     0.0,
                 ),
             };
         }
     }
 
-    /// The diagonal of J (Jacobi): the own coefficients in adhesion, the slip row's
-    /// diagonal in slip.
+    /// The upstream line solve or the diagonal of J ([`NkPreconditioner`]).
     fn precondition(&mut self, r: &[f64], out: &mut [f64]) {
-        let n = self.class.len();
-        let (dx, dy) = self.own;
-        for k in 0..n {
-            (out[k], out[n + k]) = match self.class[k] {
-                Class::Exterior => (0.0, 0.0),
-                Class::Adhesion => (r[k] / dx, r[n + k] / dy),
-                Class::Slip => {
-                    let (tx, ty) = (self.tx[k], self.ty[k]);
-                    let d = self.slip_speed[k] + self.bound[k] * (tx * tx * dx + ty * ty * dy);
-                    (if d > 0.0 { r[k] / d } else { 0.0 }, 0.0)
-                }
-            };
-        }
+        self.sys.precondition(r, out);
     }
 }
 
@@ -100,6 +67,32 @@ pub(super) struct NkReport {
 }
 
 impl<T: TangentialInfluenceOperator> TangentialSolver<T> {
+    /// (C_xx, C_xy, C_yy) of the steady kernel at offset (−1, 0): the influence of an element's
+    /// upstream neighbour (one element further in +x) on it; zeros on a grid one element
+    /// long in x.
+    fn upstream_coefficients(&self) -> (f64, f64, f64) {
+        let g = self.grid();
+        if g.nx < 2 {
+            return (0.0, 0.0, 0.0);
+        }
+        let n = g.len();
+        let column = |change| {
+            let (mut ux, mut uy) = (vec![0.0; n], vec![0.0; n]);
+            self.operator.add_column(
+                TangentialKernel::Steady,
+                (1, 0),
+                change,
+                (&mut ux, &mut uy),
+                (0, 0),
+                (0, 0),
+            );
+            (ux[0], uy[0])
+        };
+        let (bxx, bxy) = column((1.0, 0.0));
+        let (_, byy) = column((0.0, 1.0));
+        (bxx, bxy, byy)
+    }
+
     /// Steady rolling S = b + C p with C = A − A_v (prepared) by semismooth Newton–Krylov
     /// from the current p. Err(report) when it did not converge within
     /// min(`options.max_iter`, 100) Newton steps (the caller falls back to the Gauss–Seidel
@@ -115,6 +108,10 @@ impl<T: TangentialInfluenceOperator> TangentialSolver<T> {
             change: f64::INFINITY,
         };
         let own = self.operator.own_coefficients(TangentialKernel::Steady);
+        let upstream = match options.nk_preconditioner {
+            NkPreconditioner::Jacobi => None,
+            NkPreconditioner::UpstreamLine => Some(self.upstream_coefficients()),
+        };
         if !options.warm_start && !self.has_previous {
             self.px.fill(0.0);
             self.py.fill(0.0);
@@ -198,12 +195,16 @@ impl<T: TangentialInfluenceOperator> TangentialSolver<T> {
             let (wx, wy, ux, uy) = std::mem::take(&mut jac_scratch);
             let mut jac = Jacobian {
                 op: &mut self.operator,
-                class: &class,
-                tx: &tx,
-                ty: &ty,
-                slip_speed: &slip_speed,
-                bound: &self.bound,
-                own,
+                sys: NewtonSystem {
+                    class: &class,
+                    tx: &tx,
+                    ty: &ty,
+                    slip_speed: &slip_speed,
+                    bound: &self.bound,
+                    own,
+                    upstream,
+                    nx: g.nx,
+                },
                 products: 0,
                 wx,
                 wy,
@@ -260,6 +261,47 @@ impl<T: TangentialInfluenceOperator> TangentialSolver<T> {
         match result {
             Ok(()) => Ok(report),
             Err(()) => Err(report),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::grid::Grid;
+    use crate::material::Material;
+    use crate::operator::{
+        DirectTangentialInfluence, FftTangentialInfluence, TangentialInfluenceOperator,
+        TangentialKernel,
+    };
+    use crate::tangential::TangentialSolver;
+
+    /// The coupling to the upstream neighbour that the line preconditioner uses is the
+    /// negative of the own coefficient (A_v(δx) is A moved by exactly one element; xy vanishes
+    /// on the row by symmetry), read from the FFT tables and from the direct oracle (closed-form
+    /// coefficients, no table), on a non-square grid with dx ≠ dy.
+    #[test]
+    fn upstream_coupling_is_minus_the_own_coefficient() {
+        let m = Material::from_combined(82e9, 0.28).unwrap();
+        let grid = Grid::centred(6, 5, 0.4e-3, 0.7e-3, 0.0, 0.0).unwrap();
+        let mut fft = FftTangentialInfluence::new(grid, &m).unwrap();
+        fft.prepare(TangentialKernel::Steady);
+        let direct = DirectTangentialInfluence::new(grid, m).unwrap();
+        let a = TangentialSolver::with_operator(fft).unwrap();
+        let b = TangentialSolver::with_operator(direct).unwrap();
+        for (up, own) in [
+            (
+                a.upstream_coefficients(),
+                a.operator.own_coefficients(TangentialKernel::Steady),
+            ),
+            (
+                b.upstream_coefficients(),
+                b.operator.own_coefficients(TangentialKernel::Steady),
+            ),
+        ] {
+            assert!(own.0 > 0.0 && own.1 > 0.0);
+            assert!((up.0 + own.0).abs() <= 1e-12 * own.0, "{up:?} {own:?}");
+            assert!(up.1.abs() <= 1e-12 * own.0, "{up:?}");
+            assert!((up.2 + own.1).abs() <= 1e-12 * own.1, "{up:?} {own:?}");
         }
     }
 }
