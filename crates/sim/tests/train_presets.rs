@@ -27,8 +27,10 @@ struct Expected {
 
 /// Hand computations from the published parameters (docs/trains.md):
 /// bogie vehicle axle = m_body/4 + m_bogie/2 + m_wheelset; articulated end bogie axle
-/// = (m_body/2 + m_bogie)/2 + m_ws, inner = (m_body + m_bogie)/2 + m_ws.
-const EXPECTED: [Expected; 6] = [
+/// = (m_body/2 + m_bogie)/2 + m_ws, inner = (m_body + m_bogie)/2 + m_ws; a body whose centre
+/// of gravity lies f ahead of one support and r behind the other puts m r/(f + r) on the
+/// first and m f/(f + r) on the second (lever rule).
+const EXPECTED: [Expected; 7] = [
     Expected {
         name: "Manchester",
         axles: 4,
@@ -52,6 +54,32 @@ const EXPECTED: [Expected; 6] = [
         length: 19.875,
         mass: 47_800.0 + 7000.0 + 7200.0,
         axle_masses: &[15_500.0],
+    },
+    Expected {
+        name: "Eurostar",
+        // Power cars 2 × 4, the rake's 10 bogies 20.
+        axles: 28,
+        // Power car: 14 + (6.275 + 3.8) to EC1's leading axle; rake: 9 × 18.7 + (3.265 +
+        // 6.275) to the last power car's leading axle; then its 14 + 3.
+        length: (14.0 + 6.275 + 3.8) + (9.0 * 18.7 + 3.265 + 6.275) + 17.0,
+        // Power cars 2 × (51 500 + 2 × 2200 + 4 × 1700); bodies 35 860 + 7 × 22 525 + 27 122;
+        // bogies (2200 + 2 × 1700) + 8 × (2900 + 2 × 1900) + (2900 + 2 × 1900).
+        mass: 2.0 * 62_700.0 + 220_657.0 + 5600.0 + 8.0 * 6700.0 + 6700.0,
+        axle_masses: &[
+            // Power car.
+            51_500.0 / 4.0 + 1100.0 + 1700.0,
+            // EC1's own bogie: EC1's front end (CG 5.448 m behind it, 13.252 m ahead of J1).
+            0.5 * (35_860.0 * 13.252 / 18.7 + 2200.0) + 1700.0,
+            // J1: EC1's rear end and EC2's front end (CG 8.926 m behind it, 9.774 m ahead of
+            // its rear bogie).
+            0.5 * (35_860.0 * 5.448 / 18.7 + 22_525.0 * 9.774 / 18.7 + 2900.0) + 1900.0,
+            // J2 … J7: two EC2–EC8 ends, a whole body.
+            0.5 * (22_525.0 * 8.926 / 18.7 + 22_525.0 * 9.774 / 18.7 + 2900.0) + 1900.0,
+            // J8: EC8's rear end and EC9's front end (EC9's CG 13.252 m behind it).
+            0.5 * (22_525.0 * 8.926 / 18.7 + 27_122.0 * 5.448 / 18.7 + 2900.0) + 1900.0,
+            // EC9's own bogie (CG 5.448 m ahead of it).
+            0.5 * (27_122.0 * 13.252 / 18.7 + 2900.0) + 1900.0,
+        ],
     },
     Expected {
         name: "Eurostar-EC2-EC8",
@@ -128,6 +156,39 @@ fn presets_have_the_published_axles_lengths_loads_and_masses() {
         let x = 18.7 * (i / 2) as f64 + 3.0 * (i % 2) as f64;
         assert!((a.offset - x).abs() < 1e-9, "axle {i}");
     }
+    // The whole Eurostar: the axle positions and the load of every axle in running order.
+    let loads = EXPECTED[3].axle_masses;
+    let whole = preset("Eurostar").axles(G).unwrap();
+    let rake = 14.0 + 6.275 + 3.8;
+    let last_car = rake + 9.0 * 18.7 + 3.265 + 6.275;
+    let mut expected: Vec<(f64, f64)> = Vec::new();
+    for x in [0.0, 3.0, 14.0, 17.0] {
+        expected.push((x, loads[0]));
+    }
+    for bogie in 0..10 {
+        let m = match bogie {
+            0 => loads[1],
+            1 => loads[2],
+            8 => loads[4],
+            9 => loads[5],
+            _ => loads[3],
+        };
+        let x = rake + 18.7 * bogie as f64;
+        expected.extend([(x, m), (x + 3.0, m)]);
+    }
+    for x in [0.0, 3.0, 14.0, 17.0] {
+        expected.push((last_car + x, loads[0]));
+    }
+    assert_eq!(whole.len(), expected.len());
+    for (i, (a, (x, m))) in whole.iter().zip(&expected).enumerate() {
+        assert!((a.offset - x).abs() < 1e-9, "axle {i}: {} vs {x}", a.offset);
+        assert!(
+            (a.load - m * G).abs() < 1e-6,
+            "axle {i}: {} vs {}",
+            a.load,
+            m * G
+        );
+    }
 }
 
 /// Body bounce and body pitch \[Hz\] of the 6 body-and-bogie DOFs with the wheelsets fixed,
@@ -182,6 +243,7 @@ fn bogie_vehicles() -> Vec<(&'static str, &'static str, BogieVehicle)> {
                 ("AVE-S103", [4, 5]) => "cars 4, 5",
                 ("AVE-S103", _) => "cars 1–3, 6–8",
                 ("AVE-S103-car", _) => "car 2",
+                ("Eurostar", _) => "power cars",
                 _ => "car",
             };
             out.push((name, which, v));
@@ -193,7 +255,7 @@ fn bogie_vehicles() -> Vec<(&'static str, &'static str, BogieVehicle)> {
 #[test]
 fn body_frequencies_agree_between_closed_form_and_generalized_eigen_solve() {
     let vehicles = bogie_vehicles();
-    assert_eq!(vehicles.len(), 6);
+    assert_eq!(vehicles.len(), 7);
     let mut worst: f64 = 0.0;
     for (name, which, v) in &vehicles {
         let closed = v.rigid_track_frequencies();
@@ -391,59 +453,135 @@ fn the_ave_s103_preset_stands_on_its_statics_in_the_coupled_model() {
     }
 }
 
+#[test]
+fn the_whole_eurostar_stands_on_its_statics_in_the_coupled_model() {
+    // Power car, the nine-body rake with off-centre centres of gravity, power car on the
+    // approach track of a vehicle_bridge run (Hertz contact): every wheelset carries the load
+    // of the lever-rule hand computation (EXPECTED), at the start and after 50 steps, and the
+    // bodies stay at rest.
+    let text = "kind = \"vehicle_bridge\"\n[bridge]\nlength = 25.0\nEI = 8.323e9\nmass_per_length = 2303.0\nsupports = \"simply_supported\"\nmodes = 8\ndamping_ratio = 0.02\n[train]\nspeed = 10.0\nposition = -250.0\n[[train.vehicles]]\npreset = \"Eurostar\"\n[contact]\nmodel = \"hertz\"\n[integrator]\nmethod = \"generalized_alpha\"\ndt = 1e-3\nduration = 0.1\n";
+    let mut sim = match sim::config::load(
+        text,
+        std::path::Path::new("."),
+        &sim::config::LoadOptions::default(),
+    ) {
+        Ok(sim::config::ScenarioConfig::VehicleBridge(v)) => {
+            sim::vehicle_bridge::Simulation::with_vehicles(v.scenario, v.vehicles).unwrap()
+        }
+        Ok(_) => panic!("not vehicle_bridge"),
+        Err(e) => panic!("{e}"),
+    };
+    assert_eq!(sim.wheels().len(), 28);
+    assert_eq!(sim.multibody_vehicle_count(), 3);
+    let loads = EXPECTED[3].axle_masses;
+    let expected = |i: usize| {
+        G * match i {
+            0..4 | 24..28 => loads[0],
+            4 | 5 => loads[1],
+            6 | 7 => loads[2],
+            20 | 21 => loads[4],
+            22 | 23 => loads[5],
+            _ => loads[3],
+        }
+    };
+    for step in 0..=50 {
+        for (i, s) in sim.wheels().iter().enumerate() {
+            assert!(
+                (s.contact.force / expected(i) - 1.0).abs() < 1e-6,
+                "step {step}, wheel {i}: {} vs {}",
+                s.contact.force,
+                expected(i)
+            );
+        }
+        if step < 50 {
+            sim.step().unwrap();
+        }
+    }
+    for v in 0..3 {
+        let r = sim.vehicle_response(v).unwrap();
+        assert!(
+            r.body_acceleration.abs() < 1e-6 && r.body_pitch_acceleration.abs() < 1e-6,
+            "{r:?}"
+        );
+    }
+}
+
 /// The lowest body-bounce and body-pitch frequencies \[Hz\] of an articulated chain on a
 /// rigid track: QZ generalized eigenvalues of (K, M) over the body and bogie DOFs (faer), the
 /// modes identified by the share of their kinetic energy in the bodies' z (even DOFs below
-/// 2n) or θ (odd DOFs below 2n) coordinates (> 1/2).
-fn chain_body_frequencies(a: &sim::train::Articulated) -> (f64, f64) {
+/// 2n) or θ (odd DOFs below 2n) coordinates (> 1/2). Each with the body that carries most of
+/// that mode's bounce (pitch) energy.
+fn chain_body_frequencies(a: &sim::train::Articulated) -> ((f64, usize), (f64, usize)) {
     let m = a.matrices();
     let n = m.own_dofs;
     let k = Mat::<f64>::from_fn(n, n, |i, j| m.stiffness[(i, j)]);
     let mass = Mat::<f64>::from_fn(n, n, |i, j| if i == j { m.mass[i] } else { 0.0 });
     let evd = GeneralizedEigen::new_from_real(k.as_ref(), mass.as_ref()).unwrap();
     let (s_a, s_b, u) = (evd.S_a(), evd.S_b(), evd.U());
-    let (mut bounce, mut pitch) = (f64::INFINITY, f64::INFINITY);
+    let (mut bounce, mut pitch) = ((f64::INFINITY, 0), (f64::INFINITY, 0));
+    let bodies = a.body_count();
+    // The body whose coordinate `offset` (0: z, 1: θ) carries the most energy.
+    let dominant = |energy: &[f64], offset: usize| {
+        (0..bodies)
+            .max_by(|&x, &y| energy[2 * x + offset].total_cmp(&energy[2 * y + offset]))
+            .unwrap_or(0)
+    };
     for j in 0..n {
         let omega2 = (s_a[j] / s_b[j]).re;
         let energy: Vec<f64> = (0..n).map(|i| u[(i, j)].norm_sqr() * m.mass[i]).collect();
         let total: f64 = energy.iter().sum();
-        let body_z: f64 = (0..a.bodies).map(|b| energy[2 * b]).sum();
-        let body_theta: f64 = (0..a.bodies).map(|b| energy[2 * b + 1]).sum();
+        let body_z: f64 = (0..bodies).map(|b| energy[2 * b]).sum();
+        let body_theta: f64 = (0..bodies).map(|b| energy[2 * b + 1]).sum();
         let f = omega2.sqrt() / std::f64::consts::TAU;
-        if body_z / total > 0.5 {
-            bounce = bounce.min(f);
+        if body_z / total > 0.5 && f < bounce.0 {
+            bounce = (f, dominant(&energy, 0));
         }
-        if body_theta / total > 0.5 {
-            pitch = pitch.min(f);
+        if body_theta / total > 0.5 && f < pitch.0 {
+            pitch = (f, dominant(&energy, 1));
         }
     }
     (bounce, pitch)
 }
 
 #[test]
-fn the_articulated_preset_has_its_body_frequencies_in_the_docs() {
-    let t = preset("Eurostar-EC2-EC8");
-    let VehicleSpec::Articulated(a) = &t.vehicles[0] else {
-        panic!("Eurostar-EC2-EC8 is articulated");
-    };
-    let (bounce, pitch) = chain_body_frequencies(a);
-    // The symmetric eigen-solver of Articulated::rigid_track_frequencies (another algorithm:
-    // M^{-1/2} K M^{-1/2}, tridiagonal QR) has both among its frequencies, to 1e-10.
-    let all = a.rigid_track_frequencies();
-    for f in [bounce, pitch] {
-        let nearest = all
-            .iter()
-            .map(|x| (x / f - 1.0).abs())
-            .fold(f64::INFINITY, f64::min);
-        assert!(nearest < 1e-10, "{f} vs {all:?}");
-    }
-    let row = format!(
-        "| `Eurostar-EC2-EC8` | {} bodies | {bounce:.3} | {pitch:.3} |",
-        a.bodies
-    );
-    println!("{row}");
+fn the_articulated_presets_have_their_body_frequencies_in_the_docs() {
     let docs =
         std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../docs/trains.md"))
             .unwrap();
-    assert!(docs.contains(&row), "docs/trains.md lacks {row}");
+    for (name, which) in [
+        ("Eurostar-EC2-EC8", "7 bodies"),
+        ("Eurostar", "EC1–EC9, 9 bodies"),
+    ] {
+        let t = preset(name);
+        let Some(a) = t.vehicles.iter().find_map(|v| match v {
+            VehicleSpec::Articulated(a) => Some(a),
+            _ => None,
+        }) else {
+            panic!("{name} has an articulated rake");
+        };
+        let ((bounce, bounce_body), (pitch, pitch_body)) = chain_body_frequencies(a);
+        println!("{name}: lowest body bounce in body {bounce_body}, pitch in body {pitch_body}");
+        if name == "Eurostar" {
+            // Both are EC1's (its soft secondary suspension, docs/trains.md).
+            assert_eq!((bounce_body, pitch_body), (0, 0));
+        }
+        // The symmetric eigen-solver of Articulated::rigid_track_frequencies (another
+        // algorithm: M^{-1/2} K M^{-1/2}, tridiagonal QR) has both among its frequencies, to
+        // 1e-10.
+        let all = a.rigid_track_frequencies();
+        for f in [bounce, pitch] {
+            let nearest = all
+                .iter()
+                .map(|x| (x / f - 1.0).abs())
+                .fold(f64::INFINITY, f64::min);
+            assert!(nearest < 1e-10, "{f} vs {all:?}");
+        }
+        assert!(
+            which.ends_with(&format!("{} bodies", a.body_count())),
+            "{which}"
+        );
+        let row = format!("| `{name}` | {which} | {bounce:.3} | {pitch:.3} |");
+        println!("{row}");
+        assert!(docs.contains(&row), "docs/trains.md lacks {row}");
+    }
 }

@@ -20,7 +20,8 @@ use serde::Deserialize;
 use super::ConfigError;
 use super::checks::{self, ranges};
 use crate::train::{
-    Articulated, BogieVehicle, MovingForces, QuarterCar, SprungMass, Train, VehicleSpec, presets,
+    BogieVehicle, MovingForces, QuarterCar, SprungMass, Train, UniformArticulated, VehicleSpec,
+    presets,
 };
 
 /// Largest number of vehicles of a train (after `count`).
@@ -202,23 +203,31 @@ fn vehicle(v: &VehicleTable, key: &str) -> Result<Vec<VehicleSpec>, ConfigError>
             secondary_stiffness: stiffness(v.secondary_stiffness, "secondary_stiffness")?,
             secondary_damping: damper(v.secondary_damping, "secondary_damping")?,
         }),
-        "articulated" => VehicleSpec::Articulated(Articulated {
-            length,
-            bodies: v
-                .bodies
-                .ok_or_else(|| invalid!("{key}: type = \"articulated\" needs `bodies`"))?,
-            body_mass: mass(v.body_mass, "body_mass")?,
-            body_pitch_inertia: inertia(v.body_pitch_inertia, "body_pitch_inertia")?,
-            bogie_spacing: need(v.bogie_spacing, "bogie_spacing")?,
-            bogie_mass: mass(v.bogie_mass, "bogie_mass")?,
-            bogie_pitch_inertia: inertia(v.bogie_pitch_inertia, "bogie_pitch_inertia")?,
-            wheelbase: need(v.wheelbase, "wheelbase")?,
-            wheelset_mass: mass(v.wheelset_mass, "wheelset_mass")?,
-            primary_stiffness: stiffness(v.primary_stiffness, "primary_stiffness")?,
-            primary_damping: damper(v.primary_damping, "primary_damping")?,
-            secondary_stiffness: stiffness(v.secondary_stiffness, "secondary_stiffness")?,
-            secondary_damping: damper(v.secondary_damping, "secondary_damping")?,
-        }),
+        "articulated" => VehicleSpec::Articulated(
+            UniformArticulated {
+                length,
+                // Each body adds two axles: at most MAX_AXLES in the whole train.
+                bodies: checks::count(
+                    &format!("{key}.bodies"),
+                    v.bodies
+                        .ok_or_else(|| invalid!("{key}: type = \"articulated\" needs `bodies`"))?,
+                    1,
+                    MAX_AXLES / 2 - 1,
+                )?,
+                body_mass: mass(v.body_mass, "body_mass")?,
+                body_pitch_inertia: inertia(v.body_pitch_inertia, "body_pitch_inertia")?,
+                bogie_spacing: need(v.bogie_spacing, "bogie_spacing")?,
+                bogie_mass: mass(v.bogie_mass, "bogie_mass")?,
+                bogie_pitch_inertia: inertia(v.bogie_pitch_inertia, "bogie_pitch_inertia")?,
+                wheelbase: need(v.wheelbase, "wheelbase")?,
+                wheelset_mass: mass(v.wheelset_mass, "wheelset_mass")?,
+                primary_stiffness: stiffness(v.primary_stiffness, "primary_stiffness")?,
+                primary_damping: damper(v.primary_damping, "primary_damping")?,
+                secondary_stiffness: stiffness(v.secondary_stiffness, "secondary_stiffness")?,
+                secondary_damping: damper(v.secondary_damping, "secondary_damping")?,
+            }
+            .build(),
+        ),
         other => bail!("{key}.type = \"{other}\": expected {VEHICLE_TYPES}"),
     };
     // Keys that do not belong to the type are errors (a misplaced key is a mistake).

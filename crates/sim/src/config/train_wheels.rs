@@ -125,20 +125,25 @@ pub(crate) fn wheels_of(
             V::Articulated(a) => {
                 articulated_checks(i, a)?;
                 layouts.push(crate::vehicle_bridge::VehicleLayout {
-                    vehicle: crate::vehicle_bridge::MultibodyVehicle::Articulated(*a),
+                    vehicle: crate::vehicle_bridge::MultibodyVehicle::Articulated(a.clone()),
                     first_wheel: wheels.len(),
                 });
                 // Each wheelset carries its bogie's suspended share (Train::axles).
                 let alone = crate::train::Train {
                     name: String::new(),
-                    vehicles: vec![V::Articulated(*a)],
+                    vehicles: vec![V::Articulated(a.clone())],
                 };
                 let axles = alone.axles(g).map_err(|e| invalid!("{e}"))?;
-                for (x, load) in axles.iter().map(|axle| (axle.offset, axle.load)) {
+                for (k, (x, load)) in axles
+                    .iter()
+                    .map(|axle| (axle.offset, axle.load))
+                    .enumerate()
+                {
+                    let wheelset_mass = a.bogies[k / 2].wheelset_mass;
                     wheels.push(WheelSpec {
                         position: position - offset - x,
-                        wheel_mass: a.wheelset_mass,
-                        static_load: load - a.wheelset_mass * g,
+                        wheel_mass: wheelset_mass,
+                        static_load: load - wheelset_mass * g,
                         ..WheelSpec::default()
                     });
                 }
@@ -178,38 +183,58 @@ pub(crate) fn wheels_of(
 
 /// The coupled model's requirements on an articulated train: positive masses, inertias and
 /// stiffnesses, at most [`MAX_ARTICULATED_BODIES`] bodies (one dense block of the step
-/// matrix), and a suspension that holds the bodies (static sag ≤ 10 m).
+/// matrix), and a suspension that holds the bodies (static sag ≤ 10 m on every bogie). A key
+/// of the uniform rake of a train table names itself; a body or bogie of a preset's rake is
+/// named by its index.
 fn articulated_checks(i: usize, a: &crate::train::Articulated) -> Result<(), ConfigError> {
-    if a.bodies > MAX_ARTICULATED_BODIES {
+    if a.bodies.len() > MAX_ARTICULATED_BODIES {
         bail!(
             "train vehicle {i}: `bodies` = {}: an articulated train in vehicle_bridge has 1 … {MAX_ARTICULATED_BODIES} bodies (split a longer rake into several articulated vehicles)",
-            a.bodies
+            a.bodies.len()
         );
     }
-    for (key, value) in [
-        ("primary_stiffness", a.primary_stiffness),
-        ("secondary_stiffness", a.secondary_stiffness),
-        ("wheelset_mass", a.wheelset_mass),
-        ("bogie_mass", a.bogie_mass),
-        ("body_pitch_inertia", a.body_pitch_inertia),
-        ("bogie_pitch_inertia", a.bogie_pitch_inertia),
-    ] {
+    let positive = |part: String, key: &str, value: f64| {
         if value.is_nan() || value <= 0.0 {
             bail!(
-                "train vehicle {i}: `{key}` = {value}: an articulated train in vehicle_bridge needs it positive"
+                "train vehicle {i}{part}: `{key}` = {value}: an articulated train in vehicle_bridge needs it positive"
             );
         }
+        Ok(())
+    };
+    for (j, body) in a.bodies.iter().enumerate() {
+        let part = format!(", body {j}");
+        positive(part.clone(), "body_pitch_inertia", body.pitch_inertia)?;
+        positive(part, "secondary_stiffness", body.secondary_stiffness)?;
     }
-    // An inner bogie's static sag on both stages (a whole body on two secondary springs).
+    for (j, bogie) in a.bogies.iter().enumerate() {
+        let part = format!(", bogie {j}");
+        positive(part.clone(), "primary_stiffness", bogie.primary_stiffness)?;
+        positive(part.clone(), "wheelset_mass", bogie.wheelset_mass)?;
+        positive(part.clone(), "bogie_mass", bogie.mass)?;
+        positive(part, "bogie_pitch_inertia", bogie.pitch_inertia)?;
+    }
+    // Each bogie's static sag on both stages: the body ends it carries on their secondary
+    // springs (lever rule), then those and the bogie on its two primary springs.
     let g = GRAVITY;
-    let sag = 0.5 * a.body_mass * g / a.secondary_stiffness
-        + 0.5 * (a.body_mass + a.bogie_mass) * g / a.primary_stiffness;
-    if sag > crate::vehicle_bridge::MAX_STATIC_SAG {
-        bail!(
-            "train vehicle {i}: `primary_stiffness` = {}, `secondary_stiffness` = {}: too soft, the bodies would sag {sag:.3e} m under their weight (at most 10 m)",
-            a.primary_stiffness,
-            a.secondary_stiffness
-        );
+    let suspended = a.suspended_wheelset_masses();
+    for (j, bogie) in a.bogies.iter().enumerate() {
+        let mut sag_secondary: f64 = 0.0;
+        if let Some(ahead) = j.checked_sub(1).and_then(|k| a.bodies.get(k)) {
+            let share = ahead.mass * ahead.front / (ahead.front + ahead.rear);
+            sag_secondary = sag_secondary.max(share * g / ahead.secondary_stiffness);
+        }
+        if let Some(behind) = a.bodies.get(j) {
+            let share = behind.mass * behind.rear / (behind.front + behind.rear);
+            sag_secondary = sag_secondary.max(share * g / behind.secondary_stiffness);
+        }
+        let sag = sag_secondary + suspended[j] * g / bogie.primary_stiffness;
+        if sag > crate::vehicle_bridge::MAX_STATIC_SAG {
+            bail!(
+                "train vehicle {i}, bogie {j}: `primary_stiffness` = {}, `secondary_stiffness` = {}: too soft, the bodies would sag {sag:.3e} m under their weight (at most 10 m)",
+                bogie.primary_stiffness,
+                a.bodies[j.min(a.bodies.len() - 1)].secondary_stiffness
+            );
+        }
     }
     Ok(())
 }

@@ -22,7 +22,10 @@ pub mod vehicle;
 #[cfg(test)]
 pub(crate) mod fixtures;
 
-pub use vehicle::{Articulated, BogieVehicle, MovingForces, QuarterCar, SprungMass, VehicleSpec};
+pub use vehicle::{
+    Articulated, ArticulatedBody, ArticulatedBogie, BogieVehicle, MovingForces, QuarterCar,
+    SprungMass, UniformArticulated, VehicleSpec,
+};
 
 /// A train: a name and its vehicles in running order (`count` already expanded).
 #[derive(Debug, Clone, PartialEq)]
@@ -108,10 +111,7 @@ fn vehicle_mass(v: &VehicleSpec) -> f64 {
         VehicleSpec::QuarterCar(q) => q.wheel_mass + q.body_mass,
         VehicleSpec::SprungMass(s) => s.body_mass,
         VehicleSpec::BogieVehicle(b) => b.body_mass + 2.0 * b.bogie_mass + 4.0 * b.wheelset_mass,
-        VehicleSpec::Articulated(a) => {
-            let n = a.bodies as f64;
-            n * a.body_mass + (n + 1.0) * (a.bogie_mass + 2.0 * a.wheelset_mass)
-        }
+        VehicleSpec::Articulated(a) => a.mass(),
     }
 }
 
@@ -138,14 +138,7 @@ fn vehicle_axles(v: &VehicleSpec, g: f64) -> Vec<(f64, f64)> {
             .map(|x| (x, load))
             .collect()
         }
-        VehicleSpec::Articulated(a) => (0..=a.bodies)
-            .flat_map(|i| {
-                let bodies = if i == 0 || i == a.bodies { 0.5 } else { 1.0 };
-                let load = (0.5 * (bodies * a.body_mass + a.bogie_mass) + a.wheelset_mass) * g;
-                let x = i as f64 * a.bogie_spacing;
-                [(x, load), (x + a.wheelbase, load)]
-            })
-            .collect(),
+        VehicleSpec::Articulated(a) => a.axles(g),
     }
 }
 
@@ -230,22 +223,47 @@ fn validate(i: usize, v: &VehicleSpec) -> Result<(), TrainError> {
             }
         }
         VehicleSpec::Articulated(a) => {
-            if a.bodies == 0 {
+            if a.bodies.is_empty() {
                 return Err(err("bodies", 0.0, "at least one body"));
             }
-            for (key, value) in [
-                ("body_mass", a.body_mass),
-                ("bogie_spacing", a.bogie_spacing),
-                ("wheelbase", a.wheelbase),
-                ("wheelset_mass", a.wheelset_mass),
-            ] {
-                positive(key, value)?;
+            if a.bogies.len() != a.bodies.len() + 1 {
+                return Err(err(
+                    "bodies",
+                    a.bodies.len() as f64,
+                    "one bogie more than bodies (the inner bogies shared)",
+                ));
             }
-            if a.length < a.bodies as f64 * a.bogie_spacing + a.wheelbase {
+            for body in &a.bodies {
+                positive("body_mass", body.mass)?;
+                // A body's supports: f ≥ 0 ahead of and r ≥ 0 behind its centre of gravity,
+                // f + r > 0 (the bogie spacing of a uniform rake is f + r).
+                positive("bogie_spacing", body.front + body.rear)?;
+                non_negative("bogie_spacing", body.front)?;
+                non_negative("bogie_spacing", body.rear)?;
+            }
+            for bogie in &a.bogies {
+                positive("wheelbase", bogie.wheelbase)?;
+                positive("wheelset_mass", bogie.wheelset_mass)?;
+            }
+            for (body, (ahead, behind)) in a.bodies.iter().zip(a.bogies.iter().zip(&a.bogies[1..]))
+            {
+                let span = body.front + body.rear;
+                if span < 0.5 * (ahead.wheelbase + behind.wheelbase) {
+                    return Err(err(
+                        "bogie_spacing",
+                        span,
+                        "must be at least the wheelbase (neighbouring bogies would overlap)",
+                    ));
+                }
+            }
+            // The last axle is a running sum of the spans: 1e-12 relative of round-off allowed
+            // (43 × 18.7 + 3 sums to 807.1000000000001).
+            let last = a.last_axle();
+            if a.length < last - 1e-12 * last {
                 return Err(err(
                     "length",
                     a.length,
-                    "must be at least bodies × bogie_spacing + wheelbase",
+                    "must reach at least the last axle (bodies × bogie_spacing + wheelbase)",
                 ));
             }
         }
@@ -281,7 +299,7 @@ mod tests {
 
     #[test]
     fn articulated_statics_balance_the_weight() {
-        let a = chain(3);
+        let a = chain(3).build();
         let t = Train {
             name: "articulated".into(),
             vehicles: vec![VehicleSpec::Articulated(a)],

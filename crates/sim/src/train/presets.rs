@@ -4,8 +4,11 @@
 //! * `Manchester`: the Manchester benchmark car (Iwnicki 1998; §T4);
 //! * `AVE-S103`: the eight-car AVE S-103 / ICE3 / Velaro E high-speed multiple unit
 //!   (Goicolea 2014; §T5.1), `AVE-S103-car` one of its intermediate cars;
+//! * `Eurostar`: a whole Eurostar as TTB-2D composes it, power car, end coach EC1, the
+//!   articulated trailers EC2 … EC8, end coach EC9, power car (Doménech Monforte 2014;
+//!   §T5.2, §T5.5);
 //! * `Eurostar-EC2-EC8`: the seven articulated intermediate trailers of a Eurostar set
-//!   (Doménech Monforte 2014; §T5.2);
+//!   (Doménech Monforte 2014; §T5.2), their centres of gravity taken at mid-coach;
 //! * `double-deck-coach`: a double-deck passenger coach, the regional/commuter car
 //!   (Zhai, Wang & Cai 2009; §T5.3);
 //! * `Sgns`: a container flat wagon, the freight wagon (ROSE; §T5.4).
@@ -13,13 +16,17 @@
 //! [`by_name`] also knows the HSLM-A trains of [`super::hslm`]. Lookup is case-insensitive.
 //! Every preset is a [`Train`]; `count` in a scenario repeats the whole preset.
 
-use super::{Articulated, BogieVehicle, Train, VehicleSpec, hslm};
+use super::{
+    Articulated, ArticulatedBody, ArticulatedBogie, BogieVehicle, Train, UniformArticulated,
+    VehicleSpec, hslm,
+};
 
 /// The real-train preset names (HSLM-A1 … HSLM-A10 come on top, [`by_name`]).
-pub const NAMES: [&str; 6] = [
+pub const NAMES: [&str; 7] = [
     "Manchester",
     "AVE-S103",
     "AVE-S103-car",
+    "Eurostar",
     "Eurostar-EC2-EC8",
     "double-deck-coach",
     "Sgns",
@@ -41,6 +48,7 @@ pub fn by_name(name: &str) -> Option<Train> {
             AVE_S103_CAR_PITCH,
             AveCar::Intermediate,
         ))],
+        "Eurostar" => eurostar(),
         "Eurostar-EC2-EC8" => vec![VehicleSpec::Articulated(eurostar_ec2_ec8())],
         "double-deck-coach" => vec![VehicleSpec::BogieVehicle(double_deck_coach())],
         "Sgns" => vec![VehicleSpec::BogieVehicle(sgns())],
@@ -146,10 +154,10 @@ const EUROSTAR_BODIES: usize = 7;
 
 /// Eurostar EC2 … EC8 (Doménech Monforte 2014, §T5.2): seven bodies on eight bogies, the body's
 /// centre of gravity taken at mid-coach (published 8.926 m / 9.774 m from the bogies: the
-/// model here has symmetric bodies). `length` (only matters when a vehicle follows): one
-/// coach length past the last bogie, assumed.
+/// whole [`eurostar`] has them). `length` (only matters when a vehicle follows): one coach
+/// length past the last bogie, assumed.
 fn eurostar_ec2_ec8() -> Articulated {
-    Articulated {
+    UniformArticulated {
         length: (EUROSTAR_BODIES + 1) as f64 * EUROSTAR_COACH,
         bodies: EUROSTAR_BODIES,
         body_mass: 22_525.0,
@@ -164,6 +172,124 @@ fn eurostar_ec2_ec8() -> Articulated {
         secondary_stiffness: 5.8e5,
         secondary_damping: 0.0,
     }
+    .build()
+}
+
+/// Bogie centres of the Eurostar power car \[m\] (§T5.5).
+const EUROSTAR_POWER_CAR_BOGIES: f64 = 14.0;
+/// Bogie centre of a power car to its coupling end (TTB-2D's "additional distance",
+/// 20.275 − 14 m; §T5.5).
+const EUROSTAR_POWER_CAR_END: f64 = 20.275 - EUROSTAR_POWER_CAR_BOGIES;
+/// The same for EC1 at its power-car end (22.5 − 18.7 m) and EC9 (21.965 − 18.7 m).
+const EUROSTAR_EC1_END: f64 = 22.5 - EUROSTAR_COACH;
+/// See [`EUROSTAR_EC1_END`].
+const EUROSTAR_EC9_END: f64 = 21.965 - EUROSTAR_COACH;
+/// Distance between an end coach's centre of gravity and its own (outer) bogie \[m\];
+/// 13.252 m to its shared bogie (§T5.5).
+const EUROSTAR_END_COACH_CG: f64 = 5.448;
+
+/// The Eurostar power car (§T5.5): a conventional bogie vehicle, the values already 2-D.
+fn eurostar_power_car(length: f64) -> BogieVehicle {
+    BogieVehicle {
+        length,
+        body_mass: 51_500.0,
+        body_pitch_inertia: 1.05e6,
+        bogie_spacing: EUROSTAR_POWER_CAR_BOGIES,
+        bogie_mass: 2200.0,
+        bogie_pitch_inertia: 1900.0,
+        wheelbase: 3.0,
+        wheelset_mass: 1700.0,
+        primary_stiffness: 2.6e6,
+        primary_damping: 12.0e3,
+        secondary_stiffness: 3.26e6,
+        secondary_damping: 90.0e3,
+    }
+}
+
+/// The whole Eurostar as TTB-2D composes it (§T5.2, §T5.5; docs/trains.md lists what is
+/// assumed): power car; the articulated rake EC1 … EC9 (nine bodies on ten bogies: EC1's own
+/// motor bogie at the power-car end, eight shared bogies, EC9's own bogie at the other
+/// power-car end); power car.
+///
+/// * Bodies: EC1 and EC9 with their centres of gravity 5.448 m from their own (outer) bogie
+///   and 13.252 m from the shared one (for EC9 the mirror image of the data file's front and
+///   rear, assumed: docs/trains.md), EC2 … EC8 8.926 m behind the front bogie and 9.774 m
+///   ahead of the rear one; each body's secondary suspension at both its ends.
+/// * Bogies: EC1's outer bogie that of the EC1 file (the power car's motor bogie values), the
+///   shared bogies those of EC2 … EC8, EC9's outer bogie that of the EC9 file.
+/// * Geometry: bogie centres 18.7 m apart along the rake; between a power car's bogie and
+///   the end coach's outer bogie, the sum of the two vehicles' "additional distances" of
+///   TTB-2D (6.275 m and 3.8 m at EC1, 3.265 m and 6.275 m at EC9). The last power car's
+///   `length` puts a second train's leading axle where two sets coupled nose to nose would
+///   have it (6.275 m on each side of the coupling), assumed.
+fn eurostar() -> Vec<VehicleSpec> {
+    let front_gap = EUROSTAR_POWER_CAR_END + EUROSTAR_EC1_END;
+    let rear_gap = EUROSTAR_EC9_END + EUROSTAR_POWER_CAR_END;
+    let motor_bogie = ArticulatedBogie {
+        mass: 2200.0,
+        pitch_inertia: 1900.0,
+        wheelbase: 3.0,
+        wheelset_mass: 1700.0,
+        primary_stiffness: 2.6e6,
+        primary_damping: 12.0e3,
+    };
+    let shared_bogie = ArticulatedBogie {
+        mass: 2900.0,
+        pitch_inertia: 2508.0,
+        wheelbase: 3.0,
+        wheelset_mass: 1900.0,
+        primary_stiffness: 2.0e6,
+        primary_damping: 12.0e3,
+    };
+    let ec9_bogie = ArticulatedBogie {
+        primary_stiffness: 1.32e6,
+        ..shared_bogie
+    };
+    let far = EUROSTAR_COACH - EUROSTAR_END_COACH_CG;
+    let ec1 = ArticulatedBody {
+        mass: 35_860.0,
+        pitch_inertia: 1.658e6,
+        front: EUROSTAR_END_COACH_CG,
+        rear: far,
+        secondary_stiffness: 90.0e3,
+        secondary_damping: 20.0e3,
+    };
+    let ec2_ec8 = ArticulatedBody {
+        mass: 22_525.0,
+        pitch_inertia: 810_000.0,
+        front: 8.926,
+        rear: 9.774,
+        secondary_stiffness: 5.8e5,
+        secondary_damping: 0.0,
+    };
+    let ec9 = ArticulatedBody {
+        mass: 27_122.0,
+        pitch_inertia: 1.254e6,
+        front: far,
+        rear: EUROSTAR_END_COACH_CG,
+        secondary_stiffness: 250.0e3,
+        secondary_damping: 20.0e3,
+    };
+    let mut bodies = vec![ec1];
+    bodies.extend([ec2_ec8; EUROSTAR_BODIES]);
+    bodies.push(ec9);
+    let mut bogies = vec![motor_bogie];
+    bogies.extend([shared_bogie; EUROSTAR_BODIES + 1]);
+    bogies.push(ec9_bogie);
+    // Every wheelbase is 3 m, so leading axle to leading axle equals bogie centre to bogie
+    // centre: EC1's outer bogie to EC9's, then the gap to the last power car's front bogie.
+    let rake_length = (EUROSTAR_BODIES + 2) as f64 * EUROSTAR_COACH + rear_gap;
+    let leading = EUROSTAR_POWER_CAR_BOGIES + front_gap;
+    let trailing = EUROSTAR_POWER_CAR_BOGIES + 2.0 * EUROSTAR_POWER_CAR_END;
+    vec![
+        VehicleSpec::BogieVehicle(eurostar_power_car(leading)),
+        VehicleSpec::Articulated(Articulated {
+            length: rake_length,
+            bodies,
+            bogies,
+        }),
+        VehicleSpec::BogieVehicle(eurostar_power_car(trailing)),
+    ]
 }
 
 /// The double-deck passenger coach (Zhai, Wang & Cai 2009, §T5.3): per-side suspension values

@@ -102,12 +102,14 @@ pub struct BogieVehicle {
     pub secondary_damping: f64,
 }
 
-/// `articulated`: `bodies` car bodies in a row (bounce, pitch), body i resting at its two
-/// ends on bogie i and bogie i + 1 (`bodies` + 1 bogies, the inner ones shared with the
-/// neighbour), bogie centres `bogie_spacing` apart; bogies and wheelsets as in
+/// `articulated` as written in a train table: `bodies` identical car bodies in a row (bounce,
+/// pitch), body i resting at its two ends on bogie i and bogie i + 1 (`bodies` + 1 identical
+/// bogies, the inner ones shared with the neighbour), bogie centres `bogie_spacing` apart, each
+/// body's centre of gravity midway between its supports; bogies and wheelsets as in
 /// [`BogieVehicle`]. The secondary suspension acts between each body end and its bogie.
+/// [`UniformArticulated::build`] gives the general [`Articulated`] vehicle.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Articulated {
+pub struct UniformArticulated {
     /// From the leading axle to the next vehicle's leading axle \[m\].
     pub length: f64,
     /// Number of car bodies (≥ 1).
@@ -134,4 +136,88 @@ pub struct Articulated {
     pub secondary_stiffness: f64,
     /// Secondary suspension damping per body end \[N s/m\].
     pub secondary_damping: f64,
+}
+
+impl UniformArticulated {
+    /// The articulated vehicle: every body with its centre of gravity midway between its
+    /// supports (`bogie_spacing`/2 from each), every bogie alike.
+    pub fn build(&self) -> Articulated {
+        let half = 0.5 * self.bogie_spacing;
+        Articulated {
+            length: self.length,
+            bodies: vec![
+                ArticulatedBody {
+                    mass: self.body_mass,
+                    pitch_inertia: self.body_pitch_inertia,
+                    front: half,
+                    rear: half,
+                    secondary_stiffness: self.secondary_stiffness,
+                    secondary_damping: self.secondary_damping,
+                };
+                self.bodies
+            ],
+            bogies: vec![
+                ArticulatedBogie {
+                    mass: self.bogie_mass,
+                    pitch_inertia: self.bogie_pitch_inertia,
+                    wheelbase: self.wheelbase,
+                    wheelset_mass: self.wheelset_mass,
+                    primary_stiffness: self.primary_stiffness,
+                    primary_damping: self.primary_damping,
+                };
+                self.bodies + 1
+            ],
+        }
+    }
+}
+
+/// One car body of an [`Articulated`] vehicle.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ArticulatedBody {
+    /// Mass \[kg\].
+    pub mass: f64,
+    /// Pitch inertia about its centre of gravity \[kg m²\].
+    pub pitch_inertia: f64,
+    /// From its centre of gravity forward to the centre of the bogie under its front end \[m\].
+    pub front: f64,
+    /// From its centre of gravity back to the centre of the bogie under its rear end \[m\].
+    pub rear: f64,
+    /// Secondary suspension stiffness at each end \[N/m\].
+    pub secondary_stiffness: f64,
+    /// Secondary suspension damping at each end \[N s/m\].
+    pub secondary_damping: f64,
+}
+
+/// One bogie of an [`Articulated`] vehicle: two wheelsets `wheelbase` apart.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ArticulatedBogie {
+    /// Mass \[kg\].
+    pub mass: f64,
+    /// Pitch inertia \[kg m²\].
+    pub pitch_inertia: f64,
+    /// Axle distance \[m\].
+    pub wheelbase: f64,
+    /// Mass of each of its wheelsets \[kg\].
+    pub wheelset_mass: f64,
+    /// Primary suspension stiffness per wheelset \[N/m\].
+    pub primary_stiffness: f64,
+    /// Primary suspension damping per wheelset \[N s/m\].
+    pub primary_damping: f64,
+}
+
+/// `articulated`: n car bodies in a row (bounce, pitch), body j resting with its front end on
+/// bogie j and its rear end on bogie j + 1 (n + 1 bogies: the inner ones shared by two
+/// neighbouring bodies, Jacobs bogies; the end ones carry one body end, like the conventional
+/// bogie under a Eurostar end coach). Bodies and bogies may differ from each other, and a
+/// body's centre of gravity need not lie midway between its supports. Bogie j + 1's centre is
+/// `bodies[j].front + bodies[j].rear` behind bogie j's; the leading axle is the first of
+/// bogie 0.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Articulated {
+    /// From the leading axle to the next vehicle's leading axle \[m\].
+    pub length: f64,
+    /// The car bodies, leading body first (≥ 1).
+    pub bodies: Vec<ArticulatedBody>,
+    /// The bogies, leading bogie first (one more than the bodies).
+    pub bogies: Vec<ArticulatedBogie>,
 }

@@ -46,7 +46,7 @@ impl MultibodyVehicle {
     pub fn bodies(&self) -> usize {
         match self {
             Self::Bogie(_) => 1,
-            Self::Articulated(a) => a.bodies,
+            Self::Articulated(a) => a.body_count(),
         }
     }
 }
