@@ -2,7 +2,7 @@
 //! coupled vehicle–bridge run of the train's vehicle models. Checked against independent
 //! references: the closed-form static influence line of a simply supported beam for a slow
 //! passage (φ' → 1), the same passage run directly as a `vehicle_bridge` scenario, and the
-//! refusal of trains that have no vehicle model (HSLM-A: point forces).
+//! refusal of trains that have no vehicle model (trains given by their axle loads).
 
 mod support;
 
@@ -88,13 +88,13 @@ fn a_passage_equals_the_same_vehicle_bridge_run() {
 #[test]
 fn trains_without_vehicle_models_are_refused() {
     let e = match load(&format!(
-        "kind = \"sweep\"\n{BRIDGE}[trains]\nnames = [\"HSLM-A1\"]\nmodel = \"interaction\"\n[speeds]\nlist = [50.0]\n"
+        "kind = \"sweep\"\n{BRIDGE}[trains]\nmodel = \"interaction\"\n[[trains.train]]\nname = \"axles\"\naxle_positions = [0.0, 3.0]\naxle_loads = [1.7e5, 1.7e5]\n[speeds]\nlist = [50.0]\n"
     )) {
         Err(e) => e,
-        Ok(_) => panic!("HSLM-A1 accepted in the interaction model"),
+        Ok(_) => panic!("an axle-load train accepted in the interaction model"),
     };
     assert!(
-        e.contains("HSLM-A1") && e.contains("moving_forces") && e.contains("vehicle models"),
+        e.contains("axles") && e.contains("moving_forces") && e.contains("vehicle models"),
         "{e}"
     );
     let e = match load(&format!(
@@ -104,4 +104,74 @@ fn trains_without_vehicle_models_are_refused() {
         Ok(_) => panic!("[contact] accepted with moving forces"),
     };
     assert!(e.contains("[contact]") && e.contains("interaction"), "{e}");
+}
+
+#[test]
+fn hslm_trains_get_vehicle_models_whose_wheels_carry_p() {
+    // HSLM-A in the interaction model: the assumed vehicle models of
+    // `train::hslm_vehicles` (power cars and one articulated rake). The coupled model's own
+    // statics (its solve of the vehicles' stiffness matrices, independent of the lever rule
+    // the masses were chosen by) gives every wheelset the standard's point force P, and the
+    // train standing on the approach keeps it.
+    let c = sweep(
+        "\"HSLM-A\"",
+        "list = [50.0]",
+        "[contact]\nmodel = \"hertz\"\n",
+    );
+    let sim::sweep::SweepModel::Interaction(model) = &c.spec.model else {
+        panic!("interaction");
+    };
+    assert_eq!(model.trains.len(), 10);
+    for (i, vehicles) in model.trains.iter().enumerate() {
+        let p = sim::train::hslm::parameters(i + 1).unwrap().point_force;
+        let axles = c.spec.trains[i].axles(9.81).unwrap().len();
+        assert_eq!(vehicles.wheels.len(), axles, "A{}", i + 1);
+        if i > 1 {
+            continue; // the coupled statics of A1 and A2 below (cost)
+        }
+        // The train entirely on the approach (its leading axle 1 m before the span), at rest.
+        let wheels: Vec<_> = vehicles
+            .wheels
+            .iter()
+            .map(|w| sim::vehicle_bridge::WheelSpec {
+                position: w.position - 1.0,
+                ..*w
+            })
+            .collect();
+        let scenario = sim::vehicle_bridge::Scenario {
+            bridge: Box::new(std::sync::Arc::clone(&model.basis)),
+            damping: model.damping.clone(),
+            wheels,
+            moving_forces: Vec::new(),
+            speed: 1e-6,
+            contact: model.contact,
+            geometry: model.geometry,
+            irregularity: sim::vehicle_bridge::Irregularity::None,
+            integrator: model.integrator,
+            dt: vehicles.dt,
+            duration: Some(20.0 * vehicles.dt),
+            coupling: model.coupling,
+            gravity: model.gravity,
+            output_point: 10.0,
+        };
+        let mut s =
+            sim::vehicle_bridge::Simulation::with_vehicles(scenario, vehicles.layouts.clone())
+                .unwrap();
+        let worst = s
+            .static_loads()
+            .iter()
+            .fold(0.0f64, |m, f| m.max((f / p - 1.0).abs()));
+        println!(
+            "HSLM-A{}: static wheel loads within {worst:.1e} of P",
+            i + 1
+        );
+        assert!(worst < 1e-9, "A{}: {worst}", i + 1);
+        s.run(|_| {}).unwrap();
+        let worst = s
+            .wheels()
+            .iter()
+            .fold(0.0f64, |m, w| m.max((w.contact.force / p - 1.0).abs()));
+        println!("HSLM-A{}: after 20 steps within {worst:.1e} of P", i + 1);
+        assert!(worst < 1e-6, "A{}: {worst}", i + 1);
+    }
 }

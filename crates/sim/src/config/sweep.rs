@@ -531,8 +531,9 @@ fn check_work(spec: &SweepSpec, length: f64) -> Result<(), ConfigError> {
 /// span's entry), the contact law of `[contact]`, the structural method of `[integrator]`, and
 /// per train the time step (given, or the coupled model's default that resolves its contact
 /// modes, `vehicle_bridge::default_dt`); every train checked as a vehicle_bridge scenario at
-/// the highest speed. Trains given by their axle loads only (moving forces, HSLM-A) have no
-/// vehicle model and are refused.
+/// the highest speed. HSLM-A trains get the assumed vehicle models of
+/// [`crate::train::hslm_vehicles`]; other trains given by their axle loads only (moving
+/// forces) have no vehicle model and are refused.
 fn interaction_model(
     trains: &[Train],
     bridge_table: toml::Table,
@@ -563,13 +564,27 @@ fn interaction_model(
     let integrator = Integrator::Structural(parameters.method(method_name, &[])?);
     let mut wheels_max = 1;
     let mut vehicles = Vec::with_capacity(trains.len());
+    // HSLM-A: the standard's point forces become the assumed vehicle models of
+    // `train::hslm_vehicles` (same axles, every static axle load P).
+    let with_models: Vec<Train> = trains
+        .iter()
+        .map(|t| {
+            crate::train::hslm_vehicles::interaction_train_by_name(
+                &t.name,
+                crate::vehicle_bridge::GRAVITY,
+            )
+            .filter(|_| *t == hslm_by_name(&t.name))
+            .unwrap_or_else(|| t.clone())
+        })
+        .collect();
+    let trains = &with_models[..];
     for t in trains {
         if t.vehicles
             .iter()
             .all(|v| matches!(v, VehicleSpec::MovingForces(_)))
         {
             bail!(
-                "[trains] model = \"interaction\": train \"{}\" is given by its axle loads only (moving forces; EN 1991-2 defines HSLM-A so), and the interaction model needs vehicle models: use presets or train files of quarter_car, sprung_mass, bogie_vehicle or articulated vehicles, or model = \"moving_forces\"",
+                "[trains] model = \"interaction\": train \"{}\" is given by its axle loads only (moving forces), and the interaction model needs vehicle models: use presets or train files of quarter_car, sprung_mass, bogie_vehicle or articulated vehicles, or model = \"moving_forces\"",
                 t.name
             );
         }
@@ -622,4 +637,14 @@ fn interaction_model(
         model.trains.push(v);
     }
     Ok(model)
+}
+
+/// The moving-force HSLM-A train of `name` (or an empty train when the name is not one): a
+/// train keeps its vehicle models in the interaction model unless it is exactly the
+/// standard's moving-force train.
+fn hslm_by_name(name: &str) -> Train {
+    hslm::by_name(name).unwrap_or(Train {
+        name: String::new(),
+        vehicles: Vec::new(),
+    })
 }

@@ -7,6 +7,7 @@
 //! SI units.
 //!
 //! * [`hslm`]: HSLM-A1 … A10 of EN 1991-2 Annex E;
+//! * [`hslm_vehicles`]: the same trains with (assumed) vehicle models, for interaction sweeps;
 //! * [`presets`]: real trains with published parameters (by name);
 //! * [`bogie_vehicle`]: the bogie vehicle's matrices and rigid-track natural frequencies;
 //! * [`articulated`]: the articulated train's matrices (bodies sharing bogies);
@@ -15,6 +16,7 @@
 pub mod articulated;
 pub mod bogie_vehicle;
 pub mod hslm;
+pub mod hslm_vehicles;
 pub mod multibody;
 pub mod presets;
 pub mod vehicle;

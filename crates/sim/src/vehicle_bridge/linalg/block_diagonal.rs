@@ -77,8 +77,8 @@ fn apply_dense_inverse_with(blk: &DenseBlock, x: &mut [f64], buf: &mut [f64]) {
     for (c, &j) in blk.indices.iter().enumerate() {
         let xj = x[j];
         if xj != 0.0 {
-            for (r, o) in out.iter_mut().enumerate() {
-                *o += blk.inverse[r * m + c] * xj;
+            for (o, inv) in out.iter_mut().zip(blk.inverse[c..].iter().step_by(m)) {
+                *o += inv * xj;
             }
         }
     }
@@ -187,22 +187,23 @@ impl BlockDiagonal {
     /// `x ← B x` over the dense blocks (B = the inverses or their absolute values), with a
     /// stack buffer (no allocation).
     fn dense_apply(&self, x: &mut [f64], which: DensePart) {
+        // The block's entries of x are gathered once, so that each row is a dot product of two
+        // slices (the same products summed in the same order as entry by entry).
+        let mut xs = [0.0; MAX_DENSE_BLOCK];
         let mut buf = [0.0; MAX_DENSE_BLOCK];
         for b in &self.dense {
             let m = b.indices.len();
-            let mat = &b.inverse;
-            for (r, out) in buf.iter_mut().enumerate().take(m) {
-                *out = (0..m)
-                    .map(|c| {
-                        let v = mat[r * m + c];
-                        let v = if which == DensePart::AbsInverse {
-                            v.abs()
-                        } else {
-                            v
-                        };
-                        v * x[b.indices[c]]
-                    })
-                    .sum();
+            let xs = &mut xs[..m];
+            for (v, &i) in xs.iter_mut().zip(&b.indices) {
+                *v = x[i];
+            }
+            for (out, row) in buf.iter_mut().zip(b.inverse.chunks_exact(m)) {
+                *out = match which {
+                    DensePart::Inverse => row.iter().zip(xs.iter()).map(|(v, x)| v * x).sum(),
+                    DensePart::AbsInverse => {
+                        row.iter().zip(xs.iter()).map(|(v, x)| v.abs() * x).sum()
+                    }
+                };
             }
             for (r, &i) in b.indices.iter().enumerate() {
                 x[i] = buf[r];
@@ -348,10 +349,15 @@ impl BlockDiagonal {
 
     /// `y = A x`.
     pub fn mul(&self, x: &[f64], y: &mut [f64]) {
+        let mut xs = [0.0; MAX_DENSE_BLOCK];
         for b in &self.dense {
             let m = b.indices.len();
-            for (r, &i) in b.indices.iter().enumerate() {
-                y[i] = (0..m).map(|c| b.entries[r * m + c] * x[b.indices[c]]).sum();
+            let xs = &mut xs[..m];
+            for (v, &i) in xs.iter_mut().zip(&b.indices) {
+                *v = x[i];
+            }
+            for (&i, row) in b.indices.iter().zip(b.entries.chunks_exact(m)) {
+                y[i] = row.iter().zip(xs.iter()).map(|(a, x)| a * x).sum();
             }
         }
         for (&(i, j, _), e) in self.blocks.iter().zip(&self.entries) {

@@ -365,22 +365,27 @@ fn small_solve_in_place(a: &mut [f64], b: &mut [f64]) -> bool {
             }
             b.swap(pivot, col);
         }
-        for r in col + 1..m {
-            let f = a[r * m + col] / p;
+        // Rows below the pivot row, each updated from the pivot row's slice.
+        let (upper, lower) = a.split_at_mut((col + 1) * m);
+        let pivot_row = &upper[col * m + col + 1..(col + 1) * m];
+        let b_col = b[col];
+        for (row, b_r) in lower.chunks_exact_mut(m).zip(&mut b[col + 1..]) {
+            let f = row[col] / p;
             if f != 0.0 {
-                for j in col + 1..m {
-                    a[r * m + j] -= f * a[col * m + j];
+                for (x, &u) in row[col + 1..].iter_mut().zip(pivot_row) {
+                    *x -= f * u;
                 }
-                b[r] -= f * b[col];
+                *b_r -= f * b_col;
             }
         }
     }
     for r in (0..m).rev() {
+        let row = &a[r * m..(r + 1) * m];
         let mut y = b[r];
-        for j in r + 1..m {
-            y -= a[r * m + j] * b[j];
+        for (&arj, &bj) in row[r + 1..].iter().zip(&b[r + 1..]) {
+            y -= arj * bj;
         }
-        b[r] = y / a[r * m + r];
+        b[r] = y / row[r];
     }
     true
 }
