@@ -416,18 +416,7 @@ fn the_ave_s103_preset_stands_on_its_statics_in_the_coupled_model() {
     // The eight-car preset on the approach track of a vehicle_bridge run (Hertz contact): every
     // wheelset carries its car's statics, 15 500 kg × g (cars 1–3, 6–8) or 13 850 kg × g
     // (cars 4, 5), and stays there (the static start balances every DOF).
-    let text = "kind = \"vehicle_bridge\"\n[bridge]\nlength = 25.0\nEI = 8.323e9\nmass_per_length = 2303.0\nsupports = \"simply_supported\"\nmodes = 8\ndamping_ratio = 0.02\n[train]\nspeed = 10.0\nposition = -250.0\n[[train.vehicles]]\npreset = \"AVE-S103\"\n[contact]\nmodel = \"hertz\"\n[integrator]\nmethod = \"generalized_alpha\"\ndt = 1e-3\nduration = 0.1\n";
-    let mut sim = match sim::config::load(
-        text,
-        std::path::Path::new("."),
-        &sim::config::LoadOptions::default(),
-    ) {
-        Ok(sim::config::ScenarioConfig::VehicleBridge(v)) => {
-            sim::vehicle_bridge::Simulation::with_vehicles(v.scenario, v.vehicles).unwrap()
-        }
-        Ok(_) => panic!("not vehicle_bridge"),
-        Err(e) => panic!("{e}"),
-    };
+    let mut sim = standing_on_the_approach("AVE-S103");
     assert_eq!(sim.wheels().len(), 32);
     assert_eq!(sim.multibody_vehicle_count(), 8);
     let expected = |i: usize| {
@@ -459,18 +448,7 @@ fn the_whole_eurostar_stands_on_its_statics_in_the_coupled_model() {
     // approach track of a vehicle_bridge run (Hertz contact): every wheelset carries the load
     // of the lever-rule hand computation (EXPECTED), at the start and after 50 steps, and the
     // bodies stay at rest.
-    let text = "kind = \"vehicle_bridge\"\n[bridge]\nlength = 25.0\nEI = 8.323e9\nmass_per_length = 2303.0\nsupports = \"simply_supported\"\nmodes = 8\ndamping_ratio = 0.02\n[train]\nspeed = 10.0\nposition = -250.0\n[[train.vehicles]]\npreset = \"Eurostar\"\n[contact]\nmodel = \"hertz\"\n[integrator]\nmethod = \"generalized_alpha\"\ndt = 1e-3\nduration = 0.1\n";
-    let mut sim = match sim::config::load(
-        text,
-        std::path::Path::new("."),
-        &sim::config::LoadOptions::default(),
-    ) {
-        Ok(sim::config::ScenarioConfig::VehicleBridge(v)) => {
-            sim::vehicle_bridge::Simulation::with_vehicles(v.scenario, v.vehicles).unwrap()
-        }
-        Ok(_) => panic!("not vehicle_bridge"),
-        Err(e) => panic!("{e}"),
-    };
+    let mut sim = standing_on_the_approach("Eurostar");
     assert_eq!(sim.wheels().len(), 28);
     assert_eq!(sim.multibody_vehicle_count(), 3);
     let loads = EXPECTED[3].axle_masses;
@@ -583,5 +561,24 @@ fn the_articulated_presets_have_their_body_frequencies_in_the_docs() {
         let row = format!("| `{name}` | {which} | {bounce:.3} | {pitch:.3} |");
         println!("{row}");
         assert!(docs.contains(&row), "docs/trains.md lacks {row}");
+    }
+}
+
+/// The preset train `name` standing on the approach track of a vehicle_bridge run (its leading
+/// axle 250 m before the 25 m span, 10 m/s, Hertz contact, generalized-α at Δt = 1e-3 s).
+fn standing_on_the_approach(name: &str) -> sim::vehicle_bridge::Simulation {
+    let text = format!(
+        "kind = \"vehicle_bridge\"\n[bridge]\nlength = 25.0\nEI = 8.323e9\nmass_per_length = 2303.0\nsupports = \"simply_supported\"\nmodes = 8\ndamping_ratio = 0.02\n[train]\nspeed = 10.0\nposition = -250.0\n[[train.vehicles]]\npreset = \"{name}\"\n[contact]\nmodel = \"hertz\"\n[integrator]\nmethod = \"generalized_alpha\"\ndt = 1e-3\nduration = 0.1\n"
+    );
+    match sim::config::load(
+        &text,
+        std::path::Path::new("."),
+        &sim::config::LoadOptions::default(),
+    ) {
+        Ok(sim::config::ScenarioConfig::VehicleBridge(v)) => {
+            sim::vehicle_bridge::Simulation::with_vehicles(v.scenario, v.vehicles).unwrap()
+        }
+        Ok(_) => panic!("not vehicle_bridge"),
+        Err(e) => panic!("{e}"),
     }
 }
