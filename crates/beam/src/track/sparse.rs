@@ -136,20 +136,80 @@ impl SparseCholesky {
         parts: &[(f64, &SymmetricEntries)],
         what: &'static str,
     ) -> Result<Self, BeamError> {
+        Self::factorise_with(n, combine(parts), None, what)
+    }
+
+    /// Factorise the symmetric positive-definite n × n matrix given by `entries` (row, column,
+    /// value; both triangles, duplicates summed), with the fill-reducing ordering `ordering`
+    /// (`ordering[i]` = the DOF eliminated i-th; a permutation of 0..n) or AMD when `None`.
+    /// `what` names the matrix in the error. Used by couplings that add their own DOFs to a
+    /// track (`sim::vehicle_bridge::track`).
+    pub fn factorise_entries(
+        n: usize,
+        entries: &[(usize, usize, f64)],
+        ordering: Option<&[usize]>,
+        what: &'static str,
+    ) -> Result<Self, BeamError> {
+        let mut all = SymmetricEntries::new(n);
+        for &(i, j, v) in entries {
+            if i >= n || j >= n || !v.is_finite() {
+                return Err(BeamError::Factorisation {
+                    matrix: what,
+                    detail: format!(
+                        "entry ({i}, {j}) = {v} outside the {n} x {n} matrix or not finite"
+                    ),
+                });
+            }
+            all.raw.push((i, j, v));
+        }
+        all.compress();
+        let triplets = all
+            .raw
+            .iter()
+            .map(|&(i, j, v)| Triplet::new(i, j, v))
+            .collect();
+        Self::factorise_with(n, triplets, ordering, what)
+    }
+
+    fn factorise_with(
+        n: usize,
+        entries: Vec<Triplet<usize, usize, f64>>,
+        ordering: Option<&[usize]>,
+        what: &'static str,
+    ) -> Result<Self, BeamError> {
         let fail = |detail: String| BeamError::Factorisation {
             matrix: what,
             detail,
         };
-        let entries = combine(parts);
+        let inverse_order: Vec<usize>;
+        let order = match ordering {
+            Some(fwd) => {
+                if fwd.len() != n {
+                    return Err(fail(format!(
+                        "ordering of length {} (expected {n})",
+                        fwd.len()
+                    )));
+                }
+                let mut inv = vec![usize::MAX; n];
+                for (i, &p) in fwd.iter().enumerate() {
+                    if p >= n || inv[p] != usize::MAX {
+                        return Err(fail("the ordering is not a permutation".into()));
+                    }
+                    inv[p] = i;
+                }
+                inverse_order = inv;
+                SymmetricOrdering::Custom(faer::perm::PermRef::new_checked(fwd, &inverse_order, n))
+            }
+            None => SymmetricOrdering::Amd,
+        };
         let a = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &entries)
             .map_err(|e| fail(format!("{e:?}")))?;
         let params = CholeskySymbolicParams {
             supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SIMPLICIAL,
             ..Default::default()
         };
-        let symbolic =
-            factorize_symbolic_cholesky(a.symbolic(), Side::Lower, SymmetricOrdering::Amd, params)
-                .map_err(|e| fail(format!("{e:?}")))?;
+        let symbolic = factorize_symbolic_cholesky(a.symbolic(), Side::Lower, order, params)
+            .map_err(|e| fail(format!("{e:?}")))?;
         let mut values = vec![0.0; symbolic.len_val()];
         let mut scratch = MemBuffer::try_new(
             symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
