@@ -6,7 +6,7 @@ use std::time::Instant;
 use anyhow::Result;
 
 /// The quarter car over the 25 m bridge with `approach` m of ballasted track before and after
-/// it (sleepers 0.6 m, 4 rail elements per bay), Hertz contact, Newmark, Δt = 1e-4 s, 0.5 s
+/// it (sleepers 0.6 m), Hertz contact, Newmark, Δt = 1e-4 s, 0.5 s
 /// simulated from 10 m before the bridge; `None`: no track (the rail is the beam).
 fn scenario(approach: Option<f64>) -> String {
     let track = approach.map_or(String::new(), |a| {
@@ -19,17 +19,49 @@ fn scenario(approach: Option<f64>) -> String {
     )
 }
 
+/// CPU time of the calling thread \[s\] (Linux: /proc/thread-self/schedstat, nanoseconds on
+/// the CPU), or NaN where unavailable. On a shared machine the wall time includes waiting for
+/// a core; the CPU time does not.
+fn thread_cpu_time() -> f64 {
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
+        .map_or(f64::NAN, |ns| 1e-9 * ns)
+}
+
 /// Runs the table.
 pub fn track() -> Result<()> {
     println!(
-        "quarter car over a 25 m bridge (10 modes) on ballasted track (60E1, sleepers 0.6 m, 4 elements per bay), Hertz, newmark, dt = 1e-4 s, 0.5 s simulated, one thread"
+        "quarter car over a 25 m bridge (10 modes) on ballasted track (60E1, sleepers 0.6 m), Hertz, newmark, dt = 1e-4 s, 0.5 s simulated, one thread"
     );
     println!(
-        "{:>14} {:>11} {:>8} {:>10} {:>10} {:>14}",
-        "approach [m]", "track DOFs", "steps", "wall [s]", "µs/step", "× real time"
+        "{:>14} {:>9} {:>11} {:>13} {:>8} {:>10} {:>12} {:>16} {:>14}",
+        "approach [m]",
+        "el./bay",
+        "track DOFs",
+        "factor nnz",
+        "steps",
+        "wall [s]",
+        "CPU µs/step",
+        "× real time CPU",
+        "× real time wall"
     );
-    for approach in [None, Some(20.0), Some(60.0), Some(120.0)] {
-        let config = sim::config::vehicle_bridge::parse(&scenario(approach))?;
+    let rows = [
+        (None, 4),
+        (Some(20.0), 4),
+        (Some(60.0), 4),
+        (Some(120.0), 4),
+        (Some(60.0), 2),
+    ];
+    for (approach, per_bay) in rows {
+        let mut text = scenario(approach);
+        if approach.is_some() {
+            text = text.replace(
+                "sleeper_spacing = 0.6\n",
+                &format!("sleeper_spacing = 0.6\nelements_per_bay = {per_bay}\n"),
+            );
+        }
+        let config = sim::config::vehicle_bridge::parse(&text)?;
         let mut sim = match config.track {
             Some(t) => {
                 sim::vehicle_bridge::Simulation::with_track(config.scenario, config.vehicles, t)?
@@ -39,14 +71,21 @@ pub fn track() -> Result<()> {
             }
         };
         let dofs = sim.track_model().map_or(0, |t| t.n_track_dofs());
-        let start = Instant::now();
+        let nnz = sim.track_factor_entries().unwrap_or(0);
+        let (start, cpu0) = (Instant::now(), thread_cpu_time());
         let summary = sim.run(|_| {})?;
-        let wall = start.elapsed().as_secs_f64();
+        let (wall, cpu) = (start.elapsed().as_secs_f64(), thread_cpu_time() - cpu0);
         let steps = summary.solver.steps;
         let label = approach.map_or("no track".to_string(), |a| format!("{a}"));
+        let bay = if approach.is_some() {
+            per_bay.to_string()
+        } else {
+            "-".into()
+        };
         println!(
-            "{label:>14} {dofs:>11} {steps:>8} {wall:>10.4} {:>10.1} {:>14.2}",
-            1e6 * wall / steps as f64,
+            "{label:>14} {bay:>9} {dofs:>11} {nnz:>13} {steps:>8} {wall:>10.4} {:>12.1} {:>16.2} {:>14.2}",
+            1e6 * cpu / steps as f64,
+            0.5 / cpu,
             0.5 / wall
         );
     }

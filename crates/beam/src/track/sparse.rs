@@ -114,6 +114,8 @@ pub struct SparseCholesky {
     col_ptr: Vec<usize>,
     row_idx: Vec<usize>,
     values: Vec<f64>,
+    /// 1 / L\[j, j\] (a product instead of a division on the sweeps' critical path).
+    inv_diag: Vec<f64>,
     work: Vec<f64>,
     /// faer's symbolic factor and solve workspace (the full solve).
     symbolic: SymbolicCholesky<usize>,
@@ -246,6 +248,7 @@ impl SparseCholesky {
         for i in 0..n {
             inverse[perm.as_ref().map_or(i, |p| p[i])] = i;
         }
+        let inv_diag = (0..n).map(|j| 1.0 / values[col_ptr[j]]).collect();
         Ok(Self {
             n,
             perm,
@@ -253,6 +256,7 @@ impl SparseCholesky {
             col_ptr,
             row_idx,
             values,
+            inv_diag,
             work: vec![0.0; n],
             symbolic,
             stack,
@@ -274,7 +278,7 @@ impl SparseCholesky {
     fn lower_solve(&self, x: &mut [f64], start: usize) {
         for j in start..self.n {
             let (a, b) = (self.col_ptr[j], self.col_ptr[j + 1]);
-            let xj = x[j] / self.values[a];
+            let xj = x[j] * self.inv_diag[j];
             x[j] = xj;
             if xj != 0.0 {
                 for k in a + 1..b {
@@ -316,7 +320,7 @@ impl SparseCholesky {
             for k in a + 1..b {
                 s -= self.values[k] * z[self.row_idx[k]];
             }
-            z[j] = s / self.values[a];
+            z[j] = s * self.inv_diag[j];
         }
         if let Some(p) = &self.perm {
             for (i, &pi) in p.iter().enumerate() {

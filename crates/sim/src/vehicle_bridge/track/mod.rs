@@ -10,7 +10,7 @@
 //! as φ_j(x_s) F). The bridge of the scenario carries its own mass only: the rail and the
 //! chain masses are in the track.
 //!
-//! # Time step (references.md §D3.5, §D4.2)
+//! # Time step (references.md §D5.4; §D3.5, §D4.2)
 //! The whole structure, track + bridge modes + vehicles (quarter cars, bogie vehicles), is one
 //! linear system `M ẍ + C ẋ + K x = f + Σ_k F_k (b_k − e_k)` (e_k: wheel k's DOF), advanced
 //! by a member of the generalized-α family (Newmark, HHT-α, generalized-α; the step equation
@@ -121,6 +121,8 @@ pub(super) struct TrackLayer {
     r: Vec<f64>,
     tmp: Vec<f64>,
     y: Vec<Vec<f64>>,
+    /// The LU storage of the k × k capacitance Jacobian.
+    lu: integrate::DenseLu<f64>,
     sample: TrackSample,
     maxima: TrackMaxima,
     /// Output point in track coordinates \[m\].
@@ -229,6 +231,12 @@ impl Simulation {
     /// The largest track responses so far (`None` without a track).
     pub fn track_maxima(&self) -> Option<TrackMaxima> {
         self.track.as_ref().map(|t| t.maxima)
+    }
+
+    /// Stored entries of the Cholesky factor of the track's step matrix (`None` without a
+    /// track).
+    pub fn track_factor_entries(&self) -> Option<usize> {
+        self.track.as_ref().map(|t| t.factor.factor_entries())
     }
 
     /// The track model (`None` without a track).
@@ -392,6 +400,7 @@ impl TrackLayer {
             r: vec![0.0; n],
             tmp: vec![0.0; n],
             y: vec![vec![0.0; n]; nw],
+            lu: integrate::DenseLu::new(nw),
             q,
             v,
             a,

@@ -49,23 +49,27 @@ fn contact_forces(
     let mut residual = eval(forces, &mut g, outputs)?;
     let mut change = f64::INFINITY;
     for it in 1..=max_iter {
-        // (I + diag(k_c) S) ΔF = −G.
-        {
-            let mut m = lu.matrix_mut();
-            for r in 0..k {
-                for c in 0..k {
-                    let id = if r == c { 1.0 } else { 0.0 };
-                    m[(r, c)] = id + outputs[r].stiffness * cap[r * k + c];
+        // (I + diag(k_c) S) ΔF = −G (one contact: a division).
+        if k == 1 {
+            step[0] = -g[0] / (1.0 + outputs[0].stiffness * cap[0]);
+        } else {
+            {
+                let mut m = lu.matrix_mut();
+                for r in 0..k {
+                    for c in 0..k {
+                        let id = if r == c { 1.0 } else { 0.0 };
+                        m[(r, c)] = id + outputs[r].stiffness * cap[r * k + c];
+                    }
                 }
             }
+            if !lu.factor() {
+                return Err(failure(it, change, "singular capacitance Jacobian"));
+            }
+            for c in 0..k {
+                step[c] = -g[c];
+            }
+            lu.solve_in_place(&mut step);
         }
-        if !lu.factor() {
-            return Err(failure(it, change, "singular capacitance Jacobian"));
-        }
-        for c in 0..k {
-            step[c] = -g[c];
-        }
-        lu.solve_in_place(&mut step);
         let mut scale = 1.0;
         let mut accepted = false;
         for _ in 0..30 {
@@ -202,7 +206,6 @@ impl Simulation {
             }
         }
         let tol = self.scenario.coupling.tol * self.force_scale;
-        let mut lu = DenseLu::new(nw);
         let mut forces = l.forces.clone();
         let (iterations, change) = contact_forces(
             &mut self.contacts,
@@ -212,7 +215,7 @@ impl Simulation {
             &mut self.work.outputs,
             tol,
             self.scenario.coupling.max_iter,
-            &mut lu,
+            &mut l.lu,
         )
         .map_err(|e| match e {
             VehicleBridgeError::CouplingFailed {
