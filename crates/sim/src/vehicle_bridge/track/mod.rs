@@ -120,6 +120,7 @@ pub(super) struct TrackLayer {
     v_pred: Vec<f64>,
     r: Vec<f64>,
     tmp: Vec<f64>,
+    tmp_c: Vec<f64>,
     y: Vec<Vec<f64>>,
     /// The LU storage of the k × k capacitance Jacobian.
     lu: integrate::DenseLu<f64>,
@@ -399,6 +400,7 @@ impl TrackLayer {
             v_pred: vec![0.0; n],
             r: vec![0.0; n],
             tmp: vec![0.0; n],
+            tmp_c: vec![0.0; n],
             y: vec![vec![0.0; n]; nw],
             lu: integrate::DenseLu::new(nw),
             q,

@@ -148,9 +148,21 @@ impl Simulation {
         let c_va = gamma * dt;
         let (cm, cc) = ((1.0 - am) / c_qa, s * c_va / c_qa);
         let n = l.q.len();
-        for i in 0..n {
-            l.q_pred[i] = l.q[i] + dt * l.v[i] + dt * dt * (0.5 - beta) * l.a[i];
-            l.v_pred[i] = l.v[i] + (1.0 - gamma) * dt * l.a[i];
+        // Predictors q̃, ṽ and the vectors multiplied by M (c_M q̃ − α_m a) and by C
+        // (c_C q̃ − s ṽ − α_f v), in one pass.
+        {
+            let (q, v, a) = (&l.q[..n], &l.v[..n], &l.a[..n]);
+            let (qp, vp) = (&mut l.q_pred[..n], &mut l.v_pred[..n]);
+            let (tm, tc) = (&mut l.tmp[..n], &mut l.tmp_c[..n]);
+            let (c_a, c_v) = (dt * dt * (0.5 - beta), (1.0 - gamma) * dt);
+            for i in 0..n {
+                let q_pred = q[i] + dt * v[i] + c_a * a[i];
+                let v_pred = v[i] + c_v * a[i];
+                qp[i] = q_pred;
+                vp[i] = v_pred;
+                tm[i] = cm * q_pred - am * a[i];
+                tc[i] = cc * q_pred - s * v_pred - af * v[i];
+            }
         }
         // r = f − h + M(c_M q̃) + C(c_C q̃ − s ṽ), f = gravity + α_f × the old contact load,
         // h = α_m M a + α_f (C v + K q).
@@ -166,14 +178,8 @@ impl Simulation {
                 l.r[l.offset + self.wheel_dof[k]] -= f_old;
             }
         }
-        for i in 0..n {
-            l.tmp[i] = cm * l.q_pred[i] - am * l.a[i];
-        }
         sparse_mul_add(l.mass.as_ref(), 1.0, &l.tmp, &mut l.r);
-        for i in 0..n {
-            l.tmp[i] = cc * l.q_pred[i] - s * l.v_pred[i] - af * l.v[i];
-        }
-        sparse_mul_add(l.damping.as_ref(), 1.0, &l.tmp, &mut l.r);
+        sparse_mul_add(l.damping.as_ref(), 1.0, &l.tmp_c, &mut l.r);
         if af != 0.0 {
             sparse_mul_add(l.stiffness.as_ref(), -af, &l.q, &mut l.r);
         }
@@ -207,7 +213,7 @@ impl Simulation {
         }
         let tol = self.scenario.coupling.tol * self.force_scale;
         let mut forces = l.forces.clone();
-        let (iterations, change) = contact_forces(
+        let (iterations, _change) = contact_forces(
             &mut self.contacts,
             &delta0,
             &cap,
@@ -235,7 +241,6 @@ impl Simulation {
             },
             other => other,
         })?;
-        let _ = change;
         for k in 0..nw {
             let f = s * forces[k];
             for (z, y) in l.r.iter_mut().zip(&l.y[k]) {
@@ -245,12 +250,16 @@ impl Simulation {
                 delta0[k] - (0..nw).map(|j| cap[k * nw + j] * forces[j]).sum::<f64>();
         }
         l.factor.backward(&mut l.r);
-        for i in 0..n {
-            let q_new = l.r[i];
-            let a_new = (q_new - l.q_pred[i]) / c_qa;
-            l.v[i] = l.v_pred[i] + c_va * a_new;
-            l.a[i] = a_new;
-            l.q[i] = q_new;
+        {
+            let inv_cqa = 1.0 / c_qa;
+            let (x, qp, vp) = (&l.r[..n], &l.q_pred[..n], &l.v_pred[..n]);
+            let (q, v, a) = (&mut l.q[..n], &mut l.v[..n], &mut l.a[..n]);
+            for i in 0..n {
+                let a_new = (x[i] - qp[i]) * inv_cqa;
+                v[i] = vp[i] + c_va * a_new;
+                a[i] = a_new;
+                q[i] = x[i];
+            }
         }
         l.forces.copy_from_slice(&forces);
         // The simulation's DOFs to its stepper (which holds the reported state).
@@ -366,6 +375,22 @@ impl Simulation {
     }
 }
 
+/// aᵀb with four partial sums (independent chains of additions), over the entries from the
+/// first non-zero of `a` on (y = L⁻¹Pv is zero before the first non-zero of Pv).
 fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
+    let start = a.iter().position(|&x| x != 0.0).unwrap_or(a.len());
+    let (a, b) = (&a[start..], &b[start.min(b.len())..]);
+    let n = a.len().min(b.len());
+    let mut acc = [0.0f64; 4];
+    let chunks = n / 4;
+    for c in 0..chunks {
+        for (j, s) in acc.iter_mut().enumerate() {
+            *s += a[4 * c + j] * b[4 * c + j];
+        }
+    }
+    let mut total = (acc[0] + acc[1]) + (acc[2] + acc[3]);
+    for i in 4 * chunks..n {
+        total += a[i] * b[i];
+    }
+    total
 }
