@@ -433,12 +433,14 @@ fn coupled_simulation_equals_the_monolithic_reference() {
 /// Stiff track converges to today's model through the coupled simulation as through the
 /// reference ([`stiff_track_converges_to_todays_model`]): relative differences of the peak
 /// midspan deflection at d = 0.625, 0.3125, 0.15625 m, monotone, the last below 0.15 %; for
-/// Newmark and for HHT-α (α = −0.05) against today's model with the same method.
+/// Newmark, HHT-α (α = −0.05) and generalized-α (ρ∞ = 0.9) against today's model with the
+/// same method.
 #[test]
 fn coupled_stiff_track_converges_to_todays_model() {
     for method in [
         StructuralMethod::average_acceleration(),
         StructuralMethod::hht(-0.05).unwrap(),
+        StructuralMethod::generalized_alpha(0.9).unwrap(),
     ] {
         let reference = today_with(method);
         let mut diffs = Vec::new();
