@@ -327,7 +327,8 @@ impl TrackLayer {
         let mut gravity = vec![0.0; n];
         gravity[offset + m..].copy_from_slice(&s.gravity_load[m..]);
         let dt = sc.dt;
-        let factor = factorise(n, &mass, &damping, &stiffness, &params, dt)?;
+        let ordering = nested_dissection(&track, n);
+        let factor = factorise(n, &mass, &damping, &stiffness, &params, dt, &ordering)?;
 
         // Static start: the track and bridge under the static wheel loads.
         let nw = sc.wheels.len();
@@ -432,6 +433,7 @@ fn factorise(
     stiffness: &[(usize, usize, f64)],
     params: &AlphaParameters,
     dt: f64,
+    ordering: &[usize],
 ) -> Result<SparseCholesky, VehicleBridgeError> {
     let (cm, cc, ck) = step_coefficients(params, dt);
     let mut all: Vec<(usize, usize, f64)> =
@@ -439,12 +441,56 @@ fn factorise(
     all.extend(mass.iter().map(|&(i, j, v)| (i, j, cm * v)));
     all.extend(damping.iter().map(|&(i, j, v)| (i, j, cc * v)));
     all.extend(stiffness.iter().map(|&(i, j, v)| (i, j, ck * v)));
-    SparseCholesky::factorise_entries(n, &all, None, "track step matrix").map_err(|e| {
+    SparseCholesky::factorise_entries(n, &all, Some(ordering), "track step matrix").map_err(|e| {
         VehicleBridgeError::SingularStepMatrix {
             dof: 0,
             reason: e.to_string(),
         }
     })
+}
+
+/// The elimination order of the coupled system: the vehicle DOFs first (they couple to the
+/// track only through the contact), then the track by nested dissection along the rail (a
+/// rail node's w, θ separate the track before it from the track after it; the chain masses
+/// of a separating node's sleeper go just before it), the bridge modes last (they couple to
+/// every sleeper on the span). The elimination tree is then shallow, so L⁻¹P v of a contact
+/// vector is non-zero only on the path from the wheel's element to the root.
+fn nested_dissection(track: &Track, n: usize) -> Vec<usize> {
+    let n_track = track.n_track_dofs();
+    let nodes = track.node_positions().len();
+    let group = |k: usize| -> std::ops::Range<usize> {
+        let end = if k + 1 < nodes {
+            track.rail_dof(k + 1)
+        } else {
+            n_track
+        };
+        track.rail_dof(k)..end
+    };
+    let mut order: Vec<usize> = (n_track + track.n_modes()..n).collect();
+    // Recursive bisection of the node range [lo, hi) (depth log₂ of the node count).
+    fn dissect(
+        lo: usize,
+        hi: usize,
+        group: &dyn Fn(usize) -> std::ops::Range<usize>,
+        order: &mut Vec<usize>,
+    ) {
+        if hi - lo <= 2 {
+            for k in lo..hi {
+                order.extend(group(k));
+            }
+            return;
+        }
+        let mid = (lo + hi) / 2;
+        dissect(lo, mid, group, order);
+        dissect(mid + 1, hi, group, order);
+        // The separator: the sleeper's masses (after w, θ in the numbering), then w, θ.
+        let g = group(mid);
+        order.extend(g.start + 2..g.end);
+        order.extend(g.start..g.start + 2);
+    }
+    dissect(0, nodes, &group, &mut order);
+    order.extend(n_track..n_track + track.n_modes());
+    order
 }
 
 /// A track-model error as an input error of the `[track]` table (`track.<name>`).
