@@ -224,9 +224,14 @@ fn run_vehicle_bridge(text: &str, base: &str, stop: &std::sync::atomic::AtomicBo
         every,
         warnings,
         train,
+        track,
         ..
     } = *config;
-    let mut sim = match Simulation::with_vehicles(scenario, vehicles) {
+    let built = match track {
+        Some(track) => Simulation::with_track(scenario, vehicles, track),
+        None => Simulation::with_vehicles(scenario, vehicles),
+    };
+    let mut sim = match built {
         Ok(s) => s,
         Err(e) => return RunOutcome::Invalid(e.to_string()),
     };
@@ -237,7 +242,13 @@ fn run_vehicle_bridge(text: &str, base: &str, stop: &std::sync::atomic::AtomicBo
     }
     let every = every.max(1);
     let steps = sim.planned_steps();
-    let columns = sim::vehicle_bridge_series::columns(sim.wheels().len(), sim.traction().is_some());
+    let mut columns =
+        sim::vehicle_bridge_series::columns(sim.wheels().len(), sim.traction().is_some());
+    if sim.track_sample().is_some() {
+        columns.extend(sim::vehicle_bridge_series::track_columns(
+            sim.wheels().len(),
+        ));
+    }
     let width = columns.len();
     let rows = steps / every + 2;
     if rows.saturating_mul(width) > MAX_SERIES_VALUES {
@@ -257,6 +268,9 @@ fn run_vehicle_bridge(text: &str, base: &str, stop: &std::sync::atomic::AtomicBo
             traction,
             &mut line,
         );
+        if let Some(track) = sim.track_sample() {
+            sim::vehicle_bridge_series::track_row(track, &mut line);
+        }
         series.extend_from_slice(&line);
     };
     record(&sim, 0, &mut series);

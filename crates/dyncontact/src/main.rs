@@ -9,6 +9,7 @@ mod ball_drop_cli;
 mod ball_drop_summary;
 mod bench;
 mod bench_tangential;
+mod bench_track;
 mod contact_case;
 mod creep_curve_cli;
 mod errors;
@@ -213,6 +214,9 @@ enum BenchTarget {
     /// Bogie-vehicle trains in the coupled model: µs per step against the number of wheels;
     /// HSLM-A1 as moving forces.
     Trains,
+    /// A quarter car over a 25 m bridge on ballasted track (docs/track.md): µs per step
+    /// against the approach and exit length (20, 60, 120 m), and without the track.
+    Track,
 }
 
 fn main() {
@@ -326,6 +330,7 @@ fn run_cli() -> Result<()> {
             BenchTarget::Tangential => bench_tangential::tangential(),
             BenchTarget::Sweep => bench::sweep(),
             BenchTarget::Trains => bench::trains(),
+            BenchTarget::Track => bench_track::track(),
         },
         Command::Sweep {
             file,

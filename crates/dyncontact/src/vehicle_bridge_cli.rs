@@ -11,6 +11,7 @@ use anyhow::{Result, anyhow};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Serialize;
 use sim::config::vehicle_bridge::VehicleBridgeConfig;
+use sim::vehicle_bridge::track::TrackSpec;
 use sim::vehicle_bridge::traction::TractionSpec;
 use sim::vehicle_bridge::{ContactModel, CouplingSolver, Scenario, Simulation, run};
 
@@ -37,6 +38,22 @@ pub struct TractionSummaryJson {
     pub final_angular_velocity: Vec<f64>,
     /// Always false: the longitudinal force is not applied to the (vertical) bridge model.
     pub bridge_horizontal_load_applied: bool,
+}
+
+/// The `track` object of summary.json (docs/track.md): maxima over the run.
+#[derive(Serialize)]
+pub struct TrackSummaryJson {
+    pub model: String,
+    /// Track DOFs (rail and support masses; the bridge modes and vehicles not counted).
+    pub track_dofs: usize,
+    /// Largest rail displacement under a wheel \[m\].
+    pub max_rail_displacement: f64,
+    /// Largest pad force over all sleepers \[N\].
+    pub max_pad_force: f64,
+    /// Largest force under a sleeper (ballast; slab: mortar) \[N\].
+    pub max_ballast_force: f64,
+    /// Largest |rail − bridge| displacement at the output point \[m\].
+    pub max_rail_bridge_relative_displacement: f64,
 }
 
 #[derive(Serialize)]
@@ -109,6 +126,9 @@ pub struct Summary {
     pub solver: SolverSummary,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub traction: Option<TractionSummaryJson>,
+    /// The track's largest responses (absent without `[track]`; docs/track.md).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub track: Option<TrackSummaryJson>,
     pub wall_time_s: f64,
     pub simulated_time_s: f64,
 }
@@ -134,17 +154,28 @@ const MAX_STEPS: f64 = 1e9;
 /// Runs a scenario, recording every `every`-th step and `snapshots` pressure snapshots of the
 /// first wheel along its passage over the span (no CSV: as `bench` uses it).
 pub fn simulate(scenario: Scenario, every: usize, snapshots: usize) -> Result<Outcome> {
-    simulate_full(scenario, Vec::new(), None, None, every, snapshots, None)
+    simulate_full(
+        scenario,
+        Vec::new(),
+        None,
+        None,
+        None,
+        every,
+        snapshots,
+        None,
+    )
 }
 
 /// [`simulate`] with longitudinal friction (`traction`) and the recorded rows streamed to
 /// `csv`. Stops
 /// early, with `completed = false`, on an interrupt (Ctrl-C) or a failed step.
+#[allow(clippy::too_many_arguments)]
 pub fn simulate_full(
     scenario: Scenario,
     vehicles: Vec<sim::vehicle_bridge::VehicleLayout>,
     train: Option<sim::train::Train>,
     traction: Option<TractionSpec>,
+    track: Option<TrackSpec>,
     every: usize,
     snapshots: usize,
     csv: Option<&Path>,
@@ -174,7 +205,12 @@ pub fn simulate_full(
     } else {
         Vec::new()
     };
-    let mut sim = Simulation::with_vehicles(scenario, vehicles).map_err(|e| bad_input(e.into()))?;
+    let track_model = track.as_ref().map(track_model_name);
+    let built = match track {
+        Some(track) => Simulation::with_track(scenario, vehicles, track),
+        None => Simulation::with_vehicles(scenario, vehicles),
+    };
+    let mut sim = built.map_err(|e| bad_input(e.into()))?;
     if let Some(spec) = traction {
         sim.set_traction(spec).map_err(|e| bad_input(e.into()))?;
     }
@@ -321,6 +357,17 @@ pub fn simulate_full(
                 bridge_horizontal_load_applied: false,
             }
         }),
+        track: track_model.and_then(|model| {
+            let m = sim.track_maxima()?;
+            Some(TrackSummaryJson {
+                model,
+                track_dofs: sim.track_model()?.n_track_dofs(),
+                max_rail_displacement: m.rail_displacement,
+                max_pad_force: m.pad_force,
+                max_ballast_force: m.ballast_force,
+                max_rail_bridge_relative_displacement: m.rail_bridge_relative,
+            })
+        }),
         wall_time_s: wall,
         simulated_time_s: run.time_reached,
     };
@@ -336,6 +383,11 @@ pub fn simulate_full(
 }
 
 use crate::output::plural;
+
+/// The track's model name for the summary.
+fn track_model_name(spec: &TrackSpec) -> String {
+    spec.model.to_string()
+}
 
 /// Prints the readable summary.
 pub fn print_summary(s: &Summary) {
@@ -389,6 +441,17 @@ pub fn print_summary(s: &Summary) {
             String::new()
         }
     );
+    if let Some(t) = &s.track {
+        println!(
+            "  track ({}, {} DOFs): max rail displacement under a wheel {:.4e} m, max pad force {:.1} N, max ballast force {:.1} N, max |rail − bridge| at the output point {:.4e} m",
+            t.model,
+            t.track_dofs,
+            t.max_rail_displacement,
+            t.max_pad_force,
+            t.max_ballast_force,
+            t.max_rail_bridge_relative_displacement
+        );
+    }
     if let Some(t) = &s.traction {
         println!(
             "  traction ({}, mu = {}): max F_x {:.1} N, mean {:.1} N, {} saturated wheel-steps; NOT applied to the bridge (vertical modes only)",
@@ -407,6 +470,7 @@ pub fn run(config: VehicleBridgeConfig, out: &Path, json: bool) -> Result<()> {
         every,
         snapshots,
         warnings,
+        track,
     } = config;
     for w in warnings {
         eprintln!("warning: {w}");
@@ -417,6 +481,7 @@ pub fn run(config: VehicleBridgeConfig, out: &Path, json: bool) -> Result<()> {
         vehicles,
         train,
         traction,
+        track,
         every,
         snapshots,
         Some(&run_out.path("timeseries.csv")),

@@ -34,6 +34,8 @@ pub struct Row {
     pub wheels: Vec<WheelSample>,
     pub iterations: usize,
     pub traction: Vec<TractionSample>,
+    /// The track's sample (with `[track]` only).
+    pub track: Option<sim::vehicle_bridge::track::TrackSample>,
 }
 
 impl Row {
@@ -47,6 +49,7 @@ impl Row {
                 .traction()
                 .map(|t| t.samples().to_vec())
                 .unwrap_or_default(),
+            track: sim.track_sample().cloned(),
         }
     }
 
@@ -60,6 +63,9 @@ impl Row {
             &self.traction,
             out,
         );
+        if let Some(track) = &self.track {
+            sim::vehicle_bridge_series::track_row(track, out);
+        }
     }
 }
 
@@ -87,7 +93,12 @@ impl Recorder {
     pub fn new(sim: &Simulation, csv: Option<&Path>) -> Result<Recorder> {
         let csv = match csv {
             Some(path) => {
-                let names = header(sim.wheels().len(), sim.traction().is_some());
+                let mut names = header(sim.wheels().len(), sim.traction().is_some());
+                if sim.track_sample().is_some() {
+                    names.extend(sim::vehicle_bridge_series::track_columns(
+                        sim.wheels().len(),
+                    ));
+                }
                 let refs: Vec<&str> = names.iter().map(String::as_str).collect();
                 Some(CsvStream::create(path, &refs)?)
             }

@@ -272,7 +272,7 @@ fn every_example_has_a_golden_test() {
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .filter(|n| n.ends_with(".toml"))
         .collect();
-    assert_eq!(files.len(), 23, "{files:?}");
+    assert_eq!(files.len(), 24, "{files:?}");
     let missing: Vec<&String> = files
         .iter()
         .filter(|f| !this.contains(&format!("\"{f}\"")))
@@ -1420,4 +1420,67 @@ fn quoted_error_messages_match_the_program() {
             "docs/vehicle_bridge.md: {fragment}"
         );
     }
+}
+
+/// docs/track.md's numbers for examples/track_quarter_car.toml (the quarter car on the
+/// ballasted track over the 25 m bridge, Hertz contact on the rail).
+#[test]
+fn track_example_matches_the_docs() {
+    let docs = "docs/track.md";
+    check(
+        "track_quarter_car.toml",
+        &["run"],
+        &[
+            q("max_midspan_deflection", 2.6487e-3, 0.0001e-3),
+            q("max_midspan_acceleration", 0.2517, 0.0001),
+            q("contact/min_force", 61310.2, 0.1),
+            q("contact/max_force", 63277.0, 0.1),
+            q("track/max_rail_displacement", 3.4172e-3, 0.0001e-3),
+            q("track/max_pad_force", 21886.6, 0.1),
+            q("track/max_ballast_force", 22032.5, 0.1),
+            q(
+                "track/max_rail_bridge_relative_displacement",
+                7.8922e-4,
+                0.0001e-4,
+            ),
+            n("track/track_dofs", 1092.0),
+            n("solver/steps", 11667.0),
+            q("simulated_time_s", 1.167, 0.001),
+        ],
+        docs,
+    );
+    // "Today's model (no `[track]`, the bridge carrying the full 2303 kg/m) gives 2.6704e-3 m
+    // … and the midspan acceleration from 0.3371".
+    let text = std::fs::read_to_string(example("track_quarter_car.toml")).unwrap();
+    let (start, end) = (
+        text.find("[track]").unwrap(),
+        text.find("[integrator]").unwrap(),
+    );
+    let today = format!("{}{}", &text[..start], &text[end..])
+        .replace("mass_per_length = 1148.0", "mass_per_length = 2303.0");
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("today.toml");
+    std::fs::write(&path, today).unwrap();
+    let out = dir.path().join("out");
+    let o = dyncontact(&[
+        "run",
+        path.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    near(
+        "today's peak",
+        num(&v, "max_midspan_deflection"),
+        2.6704e-3,
+        0.0001e-3,
+    );
+    near(
+        "today's acceleration",
+        num(&v, "max_midspan_acceleration"),
+        0.3371,
+        0.0001,
+    );
 }

@@ -104,7 +104,7 @@ mod system;
 
 pub use first_order::FirstOrderForm;
 pub use linear::LinearStructure;
-pub use method::StructuralMethod;
+pub use method::{AlphaParameters, StructuralMethod};
 pub use step_equation::StepEquation;
 pub use stepper::{NewtonOptions, StructuralStepper};
 pub use system::StructuralSystem;

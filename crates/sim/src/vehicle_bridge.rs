@@ -81,6 +81,7 @@ mod rigid;
 pub mod run;
 mod scenario;
 mod step;
+pub mod track;
 pub mod traction;
 pub mod vehicles;
 
@@ -155,6 +156,9 @@ pub struct Simulation {
     /// A_j of the shapes A_j sin((j+1)πx/L) when the bridge is a simply supported uniform span
     /// (`beam::sine_amplitudes`): the wheel geometry then costs one `sin_cos` per wheel.
     sine: Option<Vec<f64>>,
+    /// The track between the wheels and the bridge (`None`: the rail is the beam; module
+    /// [`track`]).
+    track: Option<Box<track::TrackLayer>>,
 }
 
 #[derive(Debug, Default)]

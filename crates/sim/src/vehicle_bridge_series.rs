@@ -85,3 +85,41 @@ pub fn row(
         }
     }
 }
+
+/// The track's columns (after those of [`columns`], with `[track]` only; docs/track.md): per
+/// wheel `rail_z_m` (the rail displacement under the wheel; `rail_z_k_m` with several wheels),
+/// then `loaded_sleeper_x_m`, `pad_force_n`, `ballast_force_n` (at the sleeper with the
+/// largest pad force) and `rail_bridge_relative_m` (rail minus bridge at the output point).
+pub fn track_columns(wheels: usize) -> Vec<String> {
+    let mut header: Vec<String> = (0..wheels)
+        .map(|k| {
+            if wheels == 1 {
+                "rail_z_m".to_string()
+            } else {
+                format!("rail_z_{k}_m")
+            }
+        })
+        .collect();
+    header.extend(
+        [
+            "loaded_sleeper_x_m",
+            "pad_force_n",
+            "ballast_force_n",
+            "rail_bridge_relative_m",
+        ]
+        .iter()
+        .map(|s| s.to_string()),
+    );
+    header
+}
+
+/// Appends the values of [`track_columns`] of `sample` to `out`.
+pub fn track_row(sample: &crate::vehicle_bridge::track::TrackSample, out: &mut Vec<f64>) {
+    out.extend(&sample.rail_displacement);
+    out.extend([
+        sample.loaded_sleeper,
+        sample.pad_force,
+        sample.ballast_force,
+        sample.rail_bridge_relative,
+    ]);
+}

@@ -114,6 +114,8 @@ pub struct SparseCholesky {
     col_ptr: Vec<usize>,
     row_idx: Vec<usize>,
     values: Vec<f64>,
+    /// 1 / L\[j, j\] (a product instead of a division on the sweeps' critical path).
+    inv_diag: Vec<f64>,
     work: Vec<f64>,
     /// faer's symbolic factor and solve workspace (the full solve).
     symbolic: SymbolicCholesky<usize>,
@@ -136,20 +138,80 @@ impl SparseCholesky {
         parts: &[(f64, &SymmetricEntries)],
         what: &'static str,
     ) -> Result<Self, BeamError> {
+        Self::factorise_with(n, combine(parts), None, what)
+    }
+
+    /// Factorise the symmetric positive-definite n × n matrix given by `entries` (row, column,
+    /// value; both triangles, duplicates summed), with the fill-reducing ordering `ordering`
+    /// (`ordering[i]` = the DOF eliminated i-th; a permutation of 0..n) or AMD when `None`.
+    /// `what` names the matrix in the error. Used by couplings that add their own DOFs to a
+    /// track (`sim::vehicle_bridge::track`).
+    pub fn factorise_entries(
+        n: usize,
+        entries: &[(usize, usize, f64)],
+        ordering: Option<&[usize]>,
+        what: &'static str,
+    ) -> Result<Self, BeamError> {
+        let mut all = SymmetricEntries::new(n);
+        for &(i, j, v) in entries {
+            if i >= n || j >= n || !v.is_finite() {
+                return Err(BeamError::Factorisation {
+                    matrix: what,
+                    detail: format!(
+                        "entry ({i}, {j}) = {v} outside the {n} x {n} matrix or not finite"
+                    ),
+                });
+            }
+            all.raw.push((i, j, v));
+        }
+        all.compress();
+        let triplets = all
+            .raw
+            .iter()
+            .map(|&(i, j, v)| Triplet::new(i, j, v))
+            .collect();
+        Self::factorise_with(n, triplets, ordering, what)
+    }
+
+    fn factorise_with(
+        n: usize,
+        entries: Vec<Triplet<usize, usize, f64>>,
+        ordering: Option<&[usize]>,
+        what: &'static str,
+    ) -> Result<Self, BeamError> {
         let fail = |detail: String| BeamError::Factorisation {
             matrix: what,
             detail,
         };
-        let entries = combine(parts);
+        let inverse_order: Vec<usize>;
+        let order = match ordering {
+            Some(fwd) => {
+                if fwd.len() != n {
+                    return Err(fail(format!(
+                        "ordering of length {} (expected {n})",
+                        fwd.len()
+                    )));
+                }
+                let mut inv = vec![usize::MAX; n];
+                for (i, &p) in fwd.iter().enumerate() {
+                    if p >= n || inv[p] != usize::MAX {
+                        return Err(fail("the ordering is not a permutation".into()));
+                    }
+                    inv[p] = i;
+                }
+                inverse_order = inv;
+                SymmetricOrdering::Custom(faer::perm::PermRef::new_checked(fwd, &inverse_order, n))
+            }
+            None => SymmetricOrdering::Amd,
+        };
         let a = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, &entries)
             .map_err(|e| fail(format!("{e:?}")))?;
         let params = CholeskySymbolicParams {
             supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SIMPLICIAL,
             ..Default::default()
         };
-        let symbolic =
-            factorize_symbolic_cholesky(a.symbolic(), Side::Lower, SymmetricOrdering::Amd, params)
-                .map_err(|e| fail(format!("{e:?}")))?;
+        let symbolic = factorize_symbolic_cholesky(a.symbolic(), Side::Lower, order, params)
+            .map_err(|e| fail(format!("{e:?}")))?;
         let mut values = vec![0.0; symbolic.len_val()];
         let mut scratch = MemBuffer::try_new(
             symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
@@ -186,6 +248,7 @@ impl SparseCholesky {
         for i in 0..n {
             inverse[perm.as_ref().map_or(i, |p| p[i])] = i;
         }
+        let inv_diag = (0..n).map(|j| 1.0 / values[col_ptr[j]]).collect();
         Ok(Self {
             n,
             perm,
@@ -193,6 +256,7 @@ impl SparseCholesky {
             col_ptr,
             row_idx,
             values,
+            inv_diag,
             work: vec![0.0; n],
             symbolic,
             stack,
@@ -214,7 +278,7 @@ impl SparseCholesky {
     fn lower_solve(&self, x: &mut [f64], start: usize) {
         for j in start..self.n {
             let (a, b) = (self.col_ptr[j], self.col_ptr[j + 1]);
-            let xj = x[j] / self.values[a];
+            let xj = x[j] * self.inv_diag[j];
             x[j] = xj;
             if xj != 0.0 {
                 for k in a + 1..b {
@@ -256,7 +320,7 @@ impl SparseCholesky {
             for k in a + 1..b {
                 s -= self.values[k] * z[self.row_idx[k]];
             }
-            z[j] = s / self.values[a];
+            z[j] = s * self.inv_diag[j];
         }
         if let Some(p) = &self.perm {
             for (i, &pi) in p.iter().enumerate() {

@@ -58,12 +58,17 @@ impl Default for StructuralMethod {
     }
 }
 
-/// The parameters of the generalized-α family (Newmark and HHT are members).
+/// The parameters of the generalized-α family (Newmark and HHT are members): β, γ and the
+/// weights α_m, α_f of the step equation ([`super::StepEquation`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct AlphaParameters {
+pub struct AlphaParameters {
+    /// Newmark's β.
     pub beta: f64,
+    /// Newmark's γ.
     pub gamma: f64,
+    /// Inertia weight of the old acceleration.
     pub alpha_m: f64,
+    /// Force weight of the old state.
     pub alpha_f: f64,
 }
 
@@ -243,7 +248,7 @@ impl StructuralMethod {
     }
 
     /// Parameters in the generalized-α form, or `None` for Verlet, leapfrog, backward Euler.
-    pub(crate) fn alpha_parameters(&self) -> Option<AlphaParameters> {
+    pub fn alpha_parameters(&self) -> Option<AlphaParameters> {
         match *self {
             Self::Newmark { beta, gamma } => Some(AlphaParameters {
                 beta,

@@ -58,6 +58,7 @@ pub mod integrator;
 pub mod irregularity;
 pub mod moving_load;
 pub mod sweep;
+pub mod track;
 pub mod train;
 mod train_wheels;
 pub mod vehicle_bridge;

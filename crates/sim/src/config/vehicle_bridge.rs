@@ -75,6 +75,9 @@ pub struct VehicleBridgeConfig {
     pub snapshots: usize,
     /// Warnings for the user (the scenario is valid but has a known weakness).
     pub warnings: Vec<String>,
+    /// The track between the wheels and the bridge (`[track]`; `None`: the rail is the beam;
+    /// [`crate::vehicle_bridge::Simulation::with_track`]).
+    pub track: Option<crate::vehicle_bridge::track::TrackSpec>,
 }
 
 /// The scenario file.
@@ -93,6 +96,8 @@ pub struct VehicleBridgeFile {
     pub output: Option<OutputSpec>,
     /// Longitudinal friction (optional; docs/vehicle_bridge.md, "Traction (friction)").
     pub traction: Option<TractionToml>,
+    /// The track between the wheels and the bridge (optional; docs/track.md).
+    pub track: Option<super::track::TrackToml>,
 }
 
 /// `[traction]`: friction coefficient, tangential method and either a prescribed creepage or
@@ -386,6 +391,10 @@ pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError
     check_implicit(&scenario)?;
     check_coupling(&scenario)?;
     let traction = traction(file.traction.as_ref())?;
+    let track = super::track::track(file.track.as_ref())?;
+    if let Some(t) = &track {
+        super::track::check_size(t, length)?;
+    }
     Ok(VehicleBridgeConfig {
         scenario,
         vehicles,
@@ -394,6 +403,7 @@ pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError
         every,
         snapshots,
         warnings,
+        track,
     })
 }
 

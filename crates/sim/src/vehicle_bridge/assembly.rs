@@ -62,7 +62,7 @@ impl StructuralSystem for Structure {
 
 /// The static body and bogie displacements of a vehicle with its wheels at their start
 /// positions: K_ff q_f = g_f − K_fw z_w (own DOFs; faer's partial-pivoting LU, `DenseLu`).
-fn static_vehicle(
+pub(super) fn static_vehicle(
     v: &super::vehicles::VehicleDofs,
     stiffness: &Mat<f64>,
     gravity_load: &[f64],
@@ -376,6 +376,7 @@ impl Simulation {
             radau: None,
             rigid,
             sine: None,
+            track: None,
         };
         sim.sine = beam::sine_amplitudes(&*sim.scenario.bridge)?;
         sim.initial_samples()?;

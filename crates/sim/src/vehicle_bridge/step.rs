@@ -16,7 +16,9 @@ impl Simulation {
     /// Advances by one step of the scenario's Δt (with step reduction on failure).
     pub fn step(&mut self) -> Result<(), VehicleBridgeError> {
         let dt = self.scenario.dt;
-        if self.radau.is_some() {
+        if self.track.is_some() {
+            self.track_step(dt)?;
+        } else if self.radau.is_some() {
             self.radau_step(dt)?;
         } else {
             self.advance_locating_landings(dt)?;

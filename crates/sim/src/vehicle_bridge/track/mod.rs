@@ -1,0 +1,531 @@
+//! The track between the wheels and the bridge (references.md §D5; docs/track.md): the rail on
+//! discrete pads, sleepers and ballast of [`beam::track`], continuous over an approach
+//! embankment, the bridge and an exit embankment, coupled into the vehicle–bridge simulation.
+//!
+//! # Model
+//! The wheels contact the rail, not the beam: `δ_k = z_w − u_rail(x_k) + r(x_k)` with
+//! `u_rail(x) = N(x)ᵀu` (the Hermite shape functions of the rail element under the wheel, the
+//! same vector b_k = N(x_k) that loads the rail with the contact force, references.md §D5.2).
+//! The chains on the span stand on the bridge modes (their last spring's force enters mode j
+//! as φ_j(x_s) F). The bridge of the scenario carries its own mass only: the rail and the
+//! chain masses are in the track.
+//!
+//! # Time step (references.md §D5.4; §D3.5, §D4.2)
+//! The whole structure, track + bridge modes + vehicles (quarter cars, bogie vehicles), is one
+//! linear system `M ẍ + C ẋ + K x = f + Σ_k F_k (b_k − e_k)` (e_k: wheel k's DOF), advanced
+//! by a member of the generalized-α family (Newmark, HHT-α, generalized-α; the step equation
+//! of [`integrate::structural::StepEquation`]). Its step matrix `A = c_M M + c_C C + c_K K`
+//! is constant for a fixed Δt and factorised once (sparse Cholesky, `A = PᵀLLᵀP`). With the
+//! contact vectors `v_k = e_k − b_k` (so `δ_k = v_kᵀx + r_k`), `z = L⁻¹P r` and
+//! `y_k = L⁻¹P v_k` (a sparse forward sweep), the step's state is
+//! `x = PᵀL⁻ᵀ(z − s Σ_k F_k y_k)` (s = 1 − α_f) and the approaches are
+//!
+//! ```text
+//! δ = δ₀ − S F,   δ₀_k = y_kᵀz + r_k,   S_jk = s y_jᵀy_k   (the capacitance matrix),
+//! ```
+//!
+//! so the contact forces of the step solve the k equations `F_k = F_law(δ₀_k − (S F)_k)` by
+//! Newton's method on the k × k capacitance system (Woodbury's formula, every iteration costs
+//! O(k²) + k law evaluations and no solve with A). One step costs one forward and one
+//! backward sweep of the factor, k sparse forward sweeps and the sparse products of the
+//! step load.
+//!
+//! # Start
+//! The static solution of the track and bridge under the static wheel loads at the start
+//! positions (`K u = Σ_k W_k b_k`), every wheel at its static approach above the deflected
+//! rail, at rest relative to it (velocities from the irregularity slope as without the track).
+
+mod step;
+
+use beam::track::{RailPoint, RailSection, SparseCholesky, Track, TrackLayout, TrackSupports};
+use faer::sparse::Triplet;
+use integrate::structural::AlphaParameters;
+use integrate::structural::sparse::SparseMatrix;
+
+use super::error::{invalid, invalid_text};
+use super::{ContactModel, CouplingSolver, Integrator, Simulation, VehicleBridgeError};
+
+/// The track of a vehicle–bridge scenario (`[track]`, parsed by `config::track`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct TrackSpec {
+    /// The model's name for reports: `ballasted` or `slab`.
+    pub model: &'static str,
+    /// The rail section.
+    pub rail: RailSection,
+    /// Length of track before the bridge \[m\] (the approach embankment).
+    pub approach: f64,
+    /// Length of track after the bridge \[m\] (the exit embankment).
+    pub exit: f64,
+    /// Sleeper (fastener) spacing \[m\].
+    pub sleeper_spacing: f64,
+    /// Rail elements per sleeper bay (even, 2 … 32).
+    pub elements_per_bay: usize,
+    /// The support chains of approach, bridge and exit.
+    pub supports: TrackSupports,
+}
+
+/// The track's response at the current time (module documentation; docs/track.md).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct TrackSample {
+    /// Rail displacement under each wheel u_rail(x_k) \[m\] (down).
+    pub rail_displacement: Vec<f64>,
+    /// Position of the most loaded sleeper (largest pad force) \[m\] (bridge coordinate: 0 =
+    /// the bridge's left end, negative on the approach).
+    pub loaded_sleeper: f64,
+    /// Pad force at the most loaded sleeper \[N\] (compression positive).
+    pub pad_force: f64,
+    /// Force in the spring under the sleeper at the most loaded sleeper \[N\]: the ballast
+    /// (slab track: the CA mortar; a pad alone: the pad).
+    pub ballast_force: f64,
+    /// Rail displacement minus bridge deflection at the output point \[m\].
+    pub rail_bridge_relative: f64,
+}
+
+/// The largest values of a run so far (over time, wheels and sleepers).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct TrackMaxima {
+    /// Largest rail displacement under a wheel \[m\].
+    pub rail_displacement: f64,
+    /// Largest pad force \[N\].
+    pub pad_force: f64,
+    /// Largest force under a sleeper (ballast) \[N\].
+    pub ballast_force: f64,
+    /// Largest |rail − bridge| displacement at the output point \[m\].
+    pub rail_bridge_relative: f64,
+}
+
+/// The track part of a simulation: the assembled system, its factorised step matrix and
+/// state, and the work space of a step.
+pub(super) struct TrackLayer {
+    track: Track,
+    params: AlphaParameters,
+    /// Index of the simulation's DOF i (modes, wheels, bodies, bogies) in the coupled system:
+    /// `offset + i` (the modal DOFs of `track` are `offset..offset + m`).
+    offset: usize,
+    mass: SparseMatrix,
+    damping: SparseMatrix,
+    stiffness: SparseMatrix,
+    gravity: Vec<f64>,
+    /// The step matrix's factor and the Δt it was built for.
+    factor: SparseCholesky,
+    dt: f64,
+    q: Vec<f64>,
+    v: Vec<f64>,
+    a: Vec<f64>,
+    /// Contact forces of the last accepted step and the rail points they acted on.
+    forces: Vec<f64>,
+    points: Vec<RailPoint>,
+    /// Work space.
+    q_pred: Vec<f64>,
+    v_pred: Vec<f64>,
+    r: Vec<f64>,
+    tmp: Vec<f64>,
+    tmp_c: Vec<f64>,
+    y: Vec<Vec<f64>>,
+    /// The LU storage of the k × k capacitance Jacobian.
+    lu: integrate::DenseLu<f64>,
+    sample: TrackSample,
+    maxima: TrackMaxima,
+    /// Output point in track coordinates \[m\].
+    output_x: f64,
+}
+
+/// The integrator's generalized-α parameters, or the error naming `integrator.method`.
+fn alpha_parameters(integrator: &Integrator) -> Result<AlphaParameters, VehicleBridgeError> {
+    const ALLOWED: &str = "[track] needs a method of the Newmark / HHT / generalized-alpha family (newmark with beta > 0, hht, generalized_alpha)";
+    match integrator {
+        Integrator::Structural(method) if !method.is_explicit() => method
+            .alpha_parameters()
+            .ok_or_else(|| invalid_text("integrator.method", method.name(), ALLOWED)),
+        other => Err(invalid_text("integrator.method", other.name(), ALLOWED)),
+    }
+}
+
+/// The coupled system's step-matrix coefficients (c_M, c_C, c_K) for Δt (the step equation
+/// of [`integrate::structural::StepEquation`]).
+fn step_coefficients(p: &AlphaParameters, dt: f64) -> (f64, f64, f64) {
+    let c_qa = p.beta * dt * dt;
+    let c_va = p.gamma * dt;
+    (
+        (1.0 - p.alpha_m) / c_qa,
+        (1.0 - p.alpha_f) * c_va / c_qa,
+        1.0 - p.alpha_f,
+    )
+}
+
+/// Merged (row, column, value) entries in compressed-row form.
+fn rows_of(n: usize, entries: &[(usize, usize, f64)]) -> Result<SparseMatrix, VehicleBridgeError> {
+    let t: Vec<Triplet<usize, usize, f64>> = entries
+        .iter()
+        .map(|&(i, j, v)| Triplet::new(i, j, v))
+        .collect();
+    faer::sparse::SparseRowMat::try_new_from_triplets(n, n, &t).map_err(|e| {
+        VehicleBridgeError::SingularStepMatrix {
+            dof: 0,
+            reason: format!("the track's matrices could not be assembled ({e:?})"),
+        }
+    })
+}
+
+/// Merges entries with equal (row, column).
+fn merged(mut entries: Vec<(usize, usize, f64)>) -> Vec<(usize, usize, f64)> {
+    entries.sort_by_key(|&(i, j, _)| (i, j));
+    let mut out: Vec<(usize, usize, f64)> = Vec::with_capacity(entries.len());
+    for (i, j, v) in entries {
+        match out.last_mut() {
+            Some(last) if last.0 == i && last.1 == j => last.2 += v,
+            _ => out.push((i, j, v)),
+        }
+    }
+    out
+}
+
+impl Simulation {
+    /// [`Simulation::with_vehicles`] with the track of `spec` between the wheels and the
+    /// bridge (module [`track`](self)). Needs the Hertz contact, a method of the Newmark /
+    /// HHT / generalized-α family, no moving forces, and a track long enough for every wheel
+    /// over the whole run; an error names the key otherwise.
+    pub fn with_track(
+        scenario: super::Scenario,
+        layouts: Vec<super::VehicleLayout>,
+        spec: TrackSpec,
+    ) -> Result<Self, VehicleBridgeError> {
+        let params = alpha_parameters(&scenario.integrator)?;
+        if scenario.contact != ContactModel::Hertz {
+            let name = match scenario.contact {
+                ContactModel::Rigid => "rigid",
+                ContactModel::Bem { .. } => "bem",
+                ContactModel::Hertz => "hertz",
+            };
+            return Err(invalid_text(
+                "contact.model",
+                name,
+                "[track] couples the wheels to the rail through the Hertz contact only (model = \"hertz\")",
+            ));
+        }
+        if scenario.coupling.solver == CouplingSolver::Picard {
+            return Err(invalid_text(
+                "coupling.solver",
+                "picard",
+                "[track] solves the contact forces by Newton's method on the capacitance system (quasi_newton or newton)",
+            ));
+        }
+        if !scenario.moving_forces.is_empty() {
+            return Err(invalid(
+                "moving_forces",
+                scenario.moving_forces.len() as f64,
+                "moving forces are not supported with [track]",
+            ));
+        }
+        let mut sim = Self::with_vehicles(scenario, layouts)?;
+        let layer = TrackLayer::new(&mut sim, spec, params)?;
+        sim.track = Some(Box::new(layer));
+        sim.track_samples()?;
+        Ok(sim)
+    }
+
+    /// The track's response at the current time (`None` without a track).
+    pub fn track_sample(&self) -> Option<&TrackSample> {
+        self.track.as_ref().map(|t| &t.sample)
+    }
+
+    /// The largest track responses so far (`None` without a track).
+    pub fn track_maxima(&self) -> Option<TrackMaxima> {
+        self.track.as_ref().map(|t| t.maxima)
+    }
+
+    /// Stored entries of the Cholesky factor of the track's step matrix (`None` without a
+    /// track).
+    pub fn track_factor_entries(&self) -> Option<usize> {
+        self.track.as_ref().map(|t| t.factor.factor_entries())
+    }
+
+    /// The track model (`None` without a track).
+    pub fn track_model(&self) -> Option<&Track> {
+        self.track.as_ref().map(|t| &t.track)
+    }
+
+    /// The displacements of the coupled track system (track DOFs, bridge modes, then the
+    /// simulation's vehicle DOFs; `None` without a track).
+    pub fn track_state(&self) -> Option<&[f64]> {
+        self.track.as_ref().map(|t| &t.q[..])
+    }
+}
+
+impl TrackLayer {
+    /// Builds the coupled system of `sim` (already set up without the track) and its static
+    /// start; hands the start state to `sim`'s stepper.
+    fn new(
+        sim: &mut Simulation,
+        spec: TrackSpec,
+        params: AlphaParameters,
+    ) -> Result<Self, VehicleBridgeError> {
+        let sc = &sim.scenario;
+        let length = sc.bridge.length();
+        let layout = TrackLayout::new(spec.approach, length, spec.exit, spec.sleeper_spacing)
+            .and_then(|l| l.with_elements_per_bay(spec.elements_per_bay))
+            .map_err(track_key)?;
+        // Every wheel on the track for the whole run.
+        let first = sc
+            .wheels
+            .iter()
+            .map(|w| w.position)
+            .fold(f64::INFINITY, f64::min);
+        let last = sc
+            .wheels
+            .iter()
+            .map(|w| w.position)
+            .fold(f64::NEG_INFINITY, f64::max);
+        if first + spec.approach < 0.0 {
+            return Err(invalid(
+                "track.approach_length",
+                spec.approach,
+                &format!(
+                    "every wheel must start on the track: at least {} m (the first wheel starts at x = {first} m, 0 = the bridge's left end)",
+                    -first
+                ),
+            ));
+        }
+        let reach = last + sc.speed * sim.planned_steps() as f64 * sc.dt;
+        if reach > length + spec.exit {
+            return Err(invalid(
+                "track.exit_length",
+                spec.exit,
+                &format!(
+                    "every wheel must stay on the track until the end of the run: at least {:.6} m (the leading wheel reaches x = {reach:.6} m on a {length} m bridge)",
+                    reach - length
+                ),
+            ));
+        }
+        let track = Track::on_bridge(spec.rail, layout, &spec.supports, &*sc.bridge, &sc.damping)
+            .map_err(track_key)?;
+        let m = sc.bridge.n_modes();
+        let offset = track.n_track_dofs();
+        let n_sim = sim.stepper.q().len();
+        let n = offset + n_sim;
+        // M, C, K: the track's (with the modes) and the vehicles' (simulation DOFs ≥ m).
+        let s = &sim.structure;
+        let vehicle = |mat: &faer::Mat<f64>| -> Vec<(usize, usize, f64)> {
+            let mut e = Vec::new();
+            for i in m..n_sim {
+                for j in m..n_sim {
+                    if mat[(i, j)] != 0.0 {
+                        e.push((offset + i, offset + j, mat[(i, j)]));
+                    }
+                }
+            }
+            e
+        };
+        let assemble = |track_part: &[(usize, usize, f64)], mat: &faer::Mat<f64>| {
+            let mut all = track_part.to_vec();
+            all.extend(vehicle(mat));
+            merged(all)
+        };
+        let mass = assemble(track.mass_entries(), &s.mass);
+        let damping = assemble(track.damping_entries(), &s.damping);
+        let stiffness = assemble(track.stiffness_entries(), &s.stiffness);
+        let mut gravity = vec![0.0; n];
+        gravity[offset + m..].copy_from_slice(&s.gravity_load[m..]);
+        let dt = sc.dt;
+        let ordering = nested_dissection(&track, n);
+        let factor = factorise(n, &mass, &damping, &stiffness, &params, dt, &ordering)?;
+
+        // Static start: the track and bridge under the static wheel loads.
+        let nw = sc.wheels.len();
+        let approach = spec.approach;
+        let mut points = Vec::with_capacity(nw);
+        let mut load = vec![0.0; track.n_dofs()];
+        for (k, w) in sc.wheels.iter().enumerate() {
+            let p = track.rail_point(w.position + approach).map_err(track_key)?;
+            for a in 0..4 {
+                load[p.dofs[a]] += sim.static_loads[k] * p.weights[a];
+            }
+            points.push(p);
+        }
+        let u_track = track.static_solution(&load).map_err(track_key)?;
+        // The vehicles ride on the deflected rail: each wheel (and its quarter-car body) moves
+        // down with the rail under it, a bogie vehicle's bodies take their statics anew.
+        let mut q_sim = sim.stepper.q().to_vec();
+        q_sim[..m].copy_from_slice(&u_track[offset..]);
+        for k in 0..nw {
+            let u = points[k].value(&u_track);
+            q_sim[sim.wheel_dof[k]] += u;
+            if let Some(ib) = sim.body_dof[k] {
+                q_sim[ib] += u;
+            }
+        }
+        for v in &sim.vehicles {
+            super::assembly::static_vehicle(v, &s.stiffness, &s.gravity_load, &mut q_sim)?;
+        }
+        let mut v_sim = sim.stepper.v().to_vec();
+        v_sim[..m].fill(0.0);
+        let mut q = vec![0.0; n];
+        q[..offset].copy_from_slice(&u_track[..offset]);
+        q[offset..].copy_from_slice(&q_sim);
+        let mut v = vec![0.0; n];
+        v[offset..].copy_from_slice(&v_sim);
+        // Start accelerations: the track is in static equilibrium at rest; the vehicle DOFs
+        // (diagonal mass) take a = M⁻¹(f − C v − K q) with the static contact forces.
+        let mut a = vec![0.0; n];
+        let mut a_sim = vec![0.0; n_sim];
+        for i in m..n_sim {
+            let mii = s.mass[(i, i)];
+            if mii <= 0.0 {
+                continue;
+            }
+            let mut f = s.gravity_load[i];
+            for j in m..n_sim {
+                f -= s.damping[(i, j)] * v_sim[j] + s.stiffness[(i, j)] * q_sim[j];
+            }
+            if let Some(k) = sim.wheel_dof.iter().position(|&iw| iw == i) {
+                f -= sim.static_loads[k];
+            }
+            a_sim[i] = f / mii;
+            a[offset + i] = a_sim[i];
+        }
+        sim.stepper
+            .restart_with_acceleration(&mut sim.structure, 0.0, &q_sim, &v_sim, &a_sim)?;
+        let output_x = sim.scenario.output_point + approach;
+        Ok(Self {
+            params,
+            offset,
+            mass: rows_of(n, &mass)?,
+            damping: rows_of(n, &damping)?,
+            stiffness: rows_of(n, &stiffness)?,
+            gravity,
+            factor,
+            dt,
+            forces: sim.static_loads.clone(),
+            points,
+            q_pred: vec![0.0; n],
+            v_pred: vec![0.0; n],
+            r: vec![0.0; n],
+            tmp: vec![0.0; n],
+            tmp_c: vec![0.0; n],
+            y: vec![vec![0.0; n]; nw],
+            lu: integrate::DenseLu::new(nw),
+            q,
+            v,
+            a,
+            sample: TrackSample {
+                rail_displacement: vec![0.0; nw],
+                ..TrackSample::default()
+            },
+            maxima: TrackMaxima::default(),
+            output_x,
+            track,
+        })
+    }
+
+    /// Rail point of a wheel at bridge coordinate x.
+    fn rail_point(&self, x: f64) -> Result<RailPoint, VehicleBridgeError> {
+        self.track
+            .rail_point(x + self.track.layout().approach())
+            .map_err(track_key)
+    }
+}
+
+/// The step matrix c_M M + c_C C + c_K K of Δt, factorised.
+fn factorise(
+    n: usize,
+    mass: &[(usize, usize, f64)],
+    damping: &[(usize, usize, f64)],
+    stiffness: &[(usize, usize, f64)],
+    params: &AlphaParameters,
+    dt: f64,
+    ordering: &[usize],
+) -> Result<SparseCholesky, VehicleBridgeError> {
+    let (cm, cc, ck) = step_coefficients(params, dt);
+    let mut all: Vec<(usize, usize, f64)> =
+        Vec::with_capacity(mass.len() + damping.len() + stiffness.len());
+    all.extend(mass.iter().map(|&(i, j, v)| (i, j, cm * v)));
+    all.extend(damping.iter().map(|&(i, j, v)| (i, j, cc * v)));
+    all.extend(stiffness.iter().map(|&(i, j, v)| (i, j, ck * v)));
+    SparseCholesky::factorise_entries(n, &all, Some(ordering), "track step matrix").map_err(|e| {
+        VehicleBridgeError::SingularStepMatrix {
+            dof: 0,
+            reason: e.to_string(),
+        }
+    })
+}
+
+/// The elimination order of the coupled system: the vehicle DOFs first (they couple to the
+/// track only through the contact), then the track by nested dissection along the rail (a
+/// rail node's w, θ separate the track before it from the track after it; the chain masses
+/// of a separating node's sleeper go just before it), the bridge modes last (they couple to
+/// every sleeper on the span). The elimination tree is then shallow, so L⁻¹P v of a contact
+/// vector is non-zero only on the path from the wheel's element to the root.
+fn nested_dissection(track: &Track, n: usize) -> Vec<usize> {
+    let n_track = track.n_track_dofs();
+    let nodes = track.node_positions().len();
+    let group = |k: usize| -> std::ops::Range<usize> {
+        let end = if k + 1 < nodes {
+            track.rail_dof(k + 1)
+        } else {
+            n_track
+        };
+        track.rail_dof(k)..end
+    };
+    let mut order: Vec<usize> = (n_track + track.n_modes()..n).collect();
+    // Recursive bisection of the node range [lo, hi) (depth log₂ of the node count).
+    fn dissect(
+        lo: usize,
+        hi: usize,
+        group: &dyn Fn(usize) -> std::ops::Range<usize>,
+        order: &mut Vec<usize>,
+    ) {
+        if hi - lo <= 2 {
+            for k in lo..hi {
+                order.extend(group(k));
+            }
+            return;
+        }
+        let mid = (lo + hi) / 2;
+        dissect(lo, mid, group, order);
+        dissect(mid + 1, hi, group, order);
+        // The separator: the sleeper's masses (after w, θ in the numbering), then w, θ.
+        let g = group(mid);
+        order.extend(g.start + 2..g.end);
+        order.extend(g.start..g.start + 2);
+    }
+    dissect(0, nodes, &group, &mut order);
+    order.extend(n_track..n_track + track.n_modes());
+    order
+}
+
+/// A track-model error as an input error of the `[track]` table (`track.<name>`).
+fn track_key(e: beam::BeamError) -> VehicleBridgeError {
+    match e {
+        beam::BeamError::InvalidParameter {
+            name,
+            value,
+            reason,
+        } => invalid(format!("track.{name}"), value, reason),
+        beam::BeamError::InvalidCount {
+            name,
+            value,
+            reason,
+        } => invalid(format!("track.{name}"), value as f64, reason),
+        other => VehicleBridgeError::from(other),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use integrate::structural::StructuralMethod;
+
+    /// The step coefficients of Newmark's average acceleration: c_M = 4/Δt², c_C = 2/Δt,
+    /// c_K = 1 (exact).
+    #[test]
+    fn average_acceleration_coefficients() {
+        let p = StructuralMethod::average_acceleration()
+            .alpha_parameters()
+            .unwrap();
+        let (cm, cc, ck) = step_coefficients(&p, 0.5);
+        assert_eq!((cm, cc, ck), (16.0, 4.0, 1.0));
+        assert!(
+            alpha_parameters(&Integrator::Structural(StructuralMethod::BackwardEuler)).is_err()
+        );
+    }
+}

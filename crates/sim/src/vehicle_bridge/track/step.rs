@@ -1,0 +1,396 @@
+//! One step of the track-coupled system (module documentation of [`super`], "Time step"), the
+//! contact forces by Newton's method on the capacitance system, and the samples.
+
+use halfspace::law::{ContactModel as LawModel, LawOutput};
+use integrate::DenseLu;
+use integrate::structural::sparse::sparse_mul_add;
+
+use super::super::contact::wheel_error;
+use super::super::error::invalid;
+use super::super::{Simulation, VehicleBridgeError, WheelSample};
+use super::TrackLayer;
+
+/// Newton's method on `F_k = F_law,k(δ₀_k − (S F)_k)` (S: the k × k capacitance matrix,
+/// row-major): the Jacobian of `G(F) = F − F_law(δ₀ − S F)` is `I + diag(k_c) S`. Each
+/// iteration is damped (halved up to 30 times) until max |G| decreases. Returns the iterations;
+/// `forces` holds the start on entry and the solution on exit, `outputs` the law outputs at it.
+#[allow(clippy::too_many_arguments)]
+fn contact_forces(
+    contacts: &mut [LawModel],
+    delta0: &[f64],
+    cap: &[f64],
+    forces: &mut [f64],
+    outputs: &mut [LawOutput],
+    tol: f64,
+    max_iter: usize,
+    lu: &mut DenseLu<f64>,
+) -> Result<(usize, f64), VehicleBridgeError> {
+    let k = delta0.len();
+    let mut g = vec![0.0; k];
+    let mut step = vec![0.0; k];
+    let mut trial = vec![0.0; k];
+    let mut cf = [0.0];
+    let mut eval =
+        |f: &[f64], g: &mut [f64], out: &mut [LawOutput]| -> Result<f64, VehicleBridgeError> {
+            let mut worst = 0.0f64;
+            for c in 0..k {
+                let delta = delta0[c] - (0..k).map(|j| cap[c * k + j] * f[j]).sum::<f64>();
+                let LawModel::Law(law) = &mut contacts[c] else {
+                    unreachable!("the track couples compliant laws only (checked at set-up)")
+                };
+                out[c] = law
+                    .evaluate(delta, &[0.0], &mut cf, true)
+                    .map_err(wheel_error(c))?;
+                g[c] = f[c] - out[c].force;
+                worst = worst.max(g[c].abs());
+            }
+            Ok(worst)
+        };
+    let mut residual = eval(forces, &mut g, outputs)?;
+    let mut change = f64::INFINITY;
+    for it in 1..=max_iter {
+        // (I + diag(k_c) S) ΔF = −G (one contact: a division).
+        if k == 1 {
+            step[0] = -g[0] / (1.0 + outputs[0].stiffness * cap[0]);
+        } else {
+            {
+                let mut m = lu.matrix_mut();
+                for r in 0..k {
+                    for c in 0..k {
+                        let id = if r == c { 1.0 } else { 0.0 };
+                        m[(r, c)] = id + outputs[r].stiffness * cap[r * k + c];
+                    }
+                }
+            }
+            if !lu.factor() {
+                return Err(failure(it, change, "singular capacitance Jacobian"));
+            }
+            for c in 0..k {
+                step[c] = -g[c];
+            }
+            lu.solve_in_place(&mut step);
+        }
+        let mut scale = 1.0;
+        let mut accepted = false;
+        for _ in 0..30 {
+            for c in 0..k {
+                trial[c] = (forces[c] + scale * step[c]).max(0.0);
+            }
+            let mut g_trial = vec![0.0; k];
+            let mut out_trial = outputs.to_vec();
+            let r_trial = eval(&trial, &mut g_trial, &mut out_trial)?;
+            if r_trial < residual || r_trial <= tol {
+                change = (0..k)
+                    .map(|c| (trial[c] - forces[c]).abs())
+                    .fold(0.0, f64::max);
+                forces.copy_from_slice(&trial);
+                g.copy_from_slice(&g_trial);
+                outputs.copy_from_slice(&out_trial);
+                residual = r_trial;
+                accepted = true;
+                break;
+            }
+            scale *= 0.5;
+        }
+        if residual <= tol || (accepted && change <= tol) {
+            return Ok((it, change));
+        }
+        if !accepted {
+            // No decrease in 30 halvings: at the floating-point floor of G.
+            return if residual <= 1e3 * tol {
+                Ok((it, change))
+            } else {
+                Err(failure(it, change, "no decrease of the residual"))
+            };
+        }
+    }
+    Err(failure(
+        max_iter,
+        change,
+        &format!("no convergence in {max_iter} iterations (residual {residual:e} N)"),
+    ))
+}
+
+fn failure(iterations: usize, change: f64, reason: &str) -> VehicleBridgeError {
+    VehicleBridgeError::CouplingFailed {
+        solver: "track_capacitance_newton",
+        t: f64::NAN,
+        dt: f64::NAN,
+        halvings: 0,
+        iterations,
+        change,
+        reason: reason.to_string(),
+    }
+}
+
+impl Simulation {
+    /// One step of Δt of the track-coupled system (module documentation of [`super`]).
+    pub(in super::super) fn track_step(&mut self, dt: f64) -> Result<(), VehicleBridgeError> {
+        let mut layer = self.track.take().expect("called with a track");
+        let result = self.track_step_with(&mut layer, dt);
+        self.track = Some(layer);
+        result?;
+        self.track_samples()
+    }
+
+    fn track_step_with(&mut self, l: &mut TrackLayer, dt: f64) -> Result<(), VehicleBridgeError> {
+        if dt != l.dt {
+            return Err(invalid(
+                "integrator.dt",
+                dt,
+                "the track's step matrix is factorised for the scenario's dt only",
+            ));
+        }
+        let p = l.params;
+        let (beta, gamma, am, af) = (p.beta, p.gamma, p.alpha_m, p.alpha_f);
+        let s = 1.0 - af;
+        let c_qa = beta * dt * dt;
+        let c_va = gamma * dt;
+        let (cm, cc) = ((1.0 - am) / c_qa, s * c_va / c_qa);
+        let n = l.q.len();
+        // Predictors q̃, ṽ and the vectors multiplied by M (c_M q̃ − α_m a) and by C
+        // (c_C q̃ − s ṽ − α_f v), in one pass.
+        {
+            let (q, v, a) = (&l.q[..n], &l.v[..n], &l.a[..n]);
+            let (qp, vp) = (&mut l.q_pred[..n], &mut l.v_pred[..n]);
+            let (tm, tc) = (&mut l.tmp[..n], &mut l.tmp_c[..n]);
+            let (c_a, c_v) = (dt * dt * (0.5 - beta), (1.0 - gamma) * dt);
+            for i in 0..n {
+                let q_pred = q[i] + dt * v[i] + c_a * a[i];
+                let v_pred = v[i] + c_v * a[i];
+                qp[i] = q_pred;
+                vp[i] = v_pred;
+                tm[i] = cm * q_pred - am * a[i];
+                tc[i] = cc * q_pred - s * v_pred - af * v[i];
+            }
+        }
+        // r = f − h + M(c_M q̃) + C(c_C q̃ − s ṽ), f = gravity + α_f × the old contact load,
+        // h = α_m M a + α_f (C v + K q).
+        l.r.copy_from_slice(&l.gravity);
+        let nw = self.scenario.wheels.len();
+        for k in 0..nw {
+            let f_old = af * l.forces[k];
+            if f_old != 0.0 {
+                let pt = &l.points[k];
+                for a in 0..4 {
+                    l.r[pt.dofs[a]] += f_old * pt.weights[a];
+                }
+                l.r[l.offset + self.wheel_dof[k]] -= f_old;
+            }
+        }
+        sparse_mul_add(l.mass.as_ref(), 1.0, &l.tmp, &mut l.r);
+        sparse_mul_add(l.damping.as_ref(), 1.0, &l.tmp_c, &mut l.r);
+        if af != 0.0 {
+            sparse_mul_add(l.stiffness.as_ref(), -af, &l.q, &mut l.r);
+        }
+        // z = L⁻¹P r; y_k = L⁻¹P v_k, v_k = e_k − b_k.
+        l.factor.forward(&mut l.r);
+        let t_new = self.t() + dt;
+        let mut delta0 = vec![0.0; nw];
+        for k in 0..nw {
+            let x = self.scenario.wheels[k].position + self.scenario.speed * t_new;
+            let pt = l.rail_point(x)?;
+            let iw = l.offset + self.wheel_dof[k];
+            let v: [(usize, f64); 5] = [
+                (iw, 1.0),
+                (pt.dofs[0], -pt.weights[0]),
+                (pt.dofs[1], -pt.weights[1]),
+                (pt.dofs[2], -pt.weights[2]),
+                (pt.dofs[3], -pt.weights[3]),
+            ];
+            l.factor.forward_sparse(&v, &mut l.y[k]);
+            l.points[k] = pt;
+            self.work.r_at_wheel[k] = self.scenario.irregularity.height(x);
+            delta0[k] = dot(&l.y[k], &l.r) + self.work.r_at_wheel[k];
+        }
+        let mut cap = vec![0.0; nw * nw];
+        for j in 0..nw {
+            for k in 0..=j {
+                let c = s * dot(&l.y[j], &l.y[k]);
+                cap[j * nw + k] = c;
+                cap[k * nw + j] = c;
+            }
+        }
+        let tol = self.scenario.coupling.tol * self.force_scale;
+        let mut forces = l.forces.clone();
+        let (iterations, _change) = contact_forces(
+            &mut self.contacts,
+            &delta0,
+            &cap,
+            &mut forces,
+            &mut self.work.outputs,
+            tol,
+            self.scenario.coupling.max_iter,
+            &mut l.lu,
+        )
+        .map_err(|e| match e {
+            VehicleBridgeError::CouplingFailed {
+                solver,
+                iterations,
+                change,
+                reason,
+                ..
+            } => VehicleBridgeError::CouplingFailed {
+                solver,
+                t: self.t(),
+                dt,
+                halvings: 0,
+                iterations,
+                change,
+                reason,
+            },
+            other => other,
+        })?;
+        for k in 0..nw {
+            let f = s * forces[k];
+            for (z, y) in l.r.iter_mut().zip(&l.y[k]) {
+                *z -= f * y;
+            }
+            self.work.delta[k] =
+                delta0[k] - (0..nw).map(|j| cap[k * nw + j] * forces[j]).sum::<f64>();
+        }
+        l.factor.backward(&mut l.r);
+        {
+            let inv_cqa = 1.0 / c_qa;
+            let (x, qp, vp) = (&l.r[..n], &l.q_pred[..n], &l.v_pred[..n]);
+            let (q, v, a) = (&mut l.q[..n], &mut l.v[..n], &mut l.a[..n]);
+            for i in 0..n {
+                let a_new = (x[i] - qp[i]) * inv_cqa;
+                v[i] = vp[i] + c_va * a_new;
+                a[i] = a_new;
+                q[i] = x[i];
+            }
+        }
+        l.forces.copy_from_slice(&forces);
+        // The simulation's DOFs to its stepper (which holds the reported state).
+        let o = l.offset;
+        self.stepper.restart_with_acceleration(
+            &mut self.structure,
+            t_new,
+            &l.q[o..],
+            &l.v[o..],
+            &l.a[o..],
+        )?;
+        let stats = &mut self.stats;
+        stats.steps += 1;
+        stats.iterations += iterations;
+        stats.max_iterations = stats.max_iterations.max(iterations);
+        for k in 0..nw {
+            let touching = forces[k] > 0.0;
+            if self.in_contact[k] && !touching {
+                self.loss_events += 1;
+                self.wheel_loss_events[k] += 1;
+            }
+            self.in_contact[k] = touching;
+            self.forces[k] = forces[k];
+        }
+        Ok(())
+    }
+
+    /// The wheel samples and the track sample at the current state (and the running maxima).
+    pub(super) fn track_samples(&mut self) -> Result<(), VehicleBridgeError> {
+        let t = self.t();
+        let layer = self.track.as_mut().expect("called with a track");
+        let q = self.stepper.q();
+        let a = self.stepper.a();
+        let nw = self.scenario.wheels.len();
+        for k in 0..nw {
+            let x = self.scenario.wheels[k].position + self.scenario.speed * t;
+            let pt = layer.rail_point(x)?;
+            let rail = pt.value(&layer.q);
+            let iw = self.wheel_dof[k];
+            let r = self.scenario.irregularity.height(x);
+            let delta = q[iw] - rail + r;
+            let contact = if t == 0.0 {
+                // The static start: the law at the static approach.
+                let LawModel::Law(law) = &mut self.contacts[k] else {
+                    unreachable!("compliant laws only")
+                };
+                let mut cf = [0.0];
+                law.evaluate(delta, &[0.0], &mut cf, true)
+                    .map_err(wheel_error(k))?
+            } else {
+                self.work.outputs[k]
+            };
+            let body = self.wheel_vehicle[k]
+                .map(|v| self.vehicles[v].body_over(k - self.vehicles[v].first_wheel))
+                .or(self.body_dof[k]);
+            self.samples[k] = WheelSample {
+                position: x,
+                wheel_displacement: q[iw],
+                body_displacement: body.map_or(q[iw], |ib| q[ib]),
+                body_acceleration: body.map_or(0.0, |ib| a[ib]),
+                wheel_acceleration: a[iw],
+                approach: delta,
+                contact: LawOutput {
+                    iterations: 0,
+                    ..contact
+                },
+            };
+            layer.sample.rail_displacement[k] = rail;
+            layer.maxima.rail_displacement = layer.maxima.rail_displacement.max(rail);
+        }
+        // The most loaded sleeper: the largest pad force k (u_rail − u_below) + c (v_rail − v_below).
+        let track = &layer.track;
+        let (mut best, mut best_force) = (0, f64::NEG_INFINITY);
+        for (i, sl) in track.sleepers().iter().enumerate() {
+            let pad = sl.stack.springs()[0];
+            let rail = track.rail_dof(sl.node);
+            let (u_below, v_below) = match sl.body_dofs.first() {
+                Some(&b) => (layer.q[b], layer.v[b]),
+                None => (
+                    track.foundation_displacement(i, &layer.q),
+                    track.foundation_displacement(i, &layer.v),
+                ),
+            };
+            let f =
+                pad.stiffness * (layer.q[rail] - u_below) + pad.damping * (layer.v[rail] - v_below);
+            if f > best_force {
+                best_force = f;
+                best = i;
+            }
+        }
+        let chain = track.chain_forces(best, &layer.q, &layer.v);
+        let sample = &mut layer.sample;
+        sample.loaded_sleeper = track.sleepers()[best].x - track.layout().approach();
+        sample.pad_force = chain[0];
+        sample.ballast_force = chain.get(1).copied().unwrap_or(chain[0]);
+        let rail_out = track
+            .rail_displacement(layer.output_x, &layer.q)
+            .map_err(super::track_key)?;
+        let bridge_out: f64 = self
+            .output_shapes
+            .iter()
+            .enumerate()
+            .map(|(j, s)| s * q[j])
+            .sum();
+        sample.rail_bridge_relative = rail_out - bridge_out;
+        let mx = &mut layer.maxima;
+        mx.pad_force = mx.pad_force.max(sample.pad_force);
+        mx.ballast_force = mx.ballast_force.max(sample.ballast_force);
+        mx.rail_bridge_relative = mx
+            .rail_bridge_relative
+            .max(sample.rail_bridge_relative.abs());
+        Ok(())
+    }
+}
+
+/// aᵀb with four partial sums (independent chains of additions), over the entries from the
+/// first non-zero of `a` on (y = L⁻¹Pv is zero before the first non-zero of Pv).
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let start = a.iter().position(|&x| x != 0.0).unwrap_or(a.len());
+    let (a, b) = (&a[start..], &b[start.min(b.len())..]);
+    let n = a.len().min(b.len());
+    let mut acc = [0.0f64; 4];
+    let chunks = n / 4;
+    for c in 0..chunks {
+        for (j, s) in acc.iter_mut().enumerate() {
+            *s += a[4 * c + j] * b[4 * c + j];
+        }
+    }
+    let mut total = (acc[0] + acc[1]) + (acc[2] + acc[3]);
+    for i in 4 * chunks..n {
+        total += a[i] * b[i];
+    }
+    total
+}
