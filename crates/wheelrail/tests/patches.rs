@@ -296,7 +296,7 @@ fn profile_law_is_hertz_for_ideal_profiles() {
         assert!(ks.abs() < 1e-2, "{ks}");
         assert!((out.energy / (0.4 * out.force * delta) - 1.0).abs() < 1e-3);
         let back = law.static_approach(out.force).unwrap();
-        assert!((back / delta - 1.0).abs() < 1e-5, "{back} vs {delta}");
+        assert!((back / delta - 1.0).abs() < 1e-9, "{back} vs {delta}");
     }
     assert_eq!(law.evaluate(-1e-6, &[], &mut [], true).unwrap().force, 0.0);
     // A column gap correction c(0) shifts the approach.
