@@ -185,6 +185,7 @@ pub fn simulate_full(
         ContactModel::Rigid => "rigid",
         ContactModel::Hertz => "hertz",
         ContactModel::Bem { .. } => "bem",
+        ContactModel::BemProfiles(_) => "bem_profiles",
     };
     let integrator = scenario.integrator.name().to_string();
     let start = Instant::now();
@@ -432,7 +433,7 @@ pub fn print_summary(s: &Summary) {
         plural(s.solver.steps, "step"),
         s.solver.mean_iterations_per_step,
         s.solver.max_iterations_per_step,
-        if s.contact.model == "bem" {
+        if s.contact.model.starts_with("bem") {
             format!(
                 ", {:.2} contact-solver iterations/step",
                 s.solver.mean_contact_iterations_per_step

@@ -351,7 +351,7 @@ pub fn write_plots(
         .filter(|(_, p)| p.iter().any(|&(_, p)| p > 0.0))
         .collect();
     if !with_pressure.is_empty() {
-        let piecewise = ctx.contact_model == "bem";
+        let piecewise = ctx.contact_model.starts_with("bem");
         plot::panels(
             &dir.path("pressure.png"),
             &[Panel {

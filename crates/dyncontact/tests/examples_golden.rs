@@ -262,6 +262,48 @@ fn wheel_rail_example_matches_docs_profiles() {
     );
 }
 
+/// The vehicle–bridge example with real profiles (docs/profiles.md, "In the vehicle–bridge
+/// simulation"): the quarter car over the dip on S1002/60E1, and its first row (the static
+/// start).
+#[test]
+fn vehicle_bridge_profiles_example_matches_docs_profiles() {
+    let docs = "docs/profiles.md (vehicle–bridge example)";
+    check(
+        "vehicle_bridge_s1002_60e1.toml",
+        &["run"],
+        &[
+            q("contact/min_force", 39409.9, 0.1),
+            q("contact/max_force", 83285.5, 0.1),
+            q("contact/max_pressure", 933.0e6, 0.1e6),
+            q("max_midspan_deflection", 1.4370e-3, 0.0001e-3),
+            n("solver/steps", 600.0),
+            n("solver/failed_steps", 0.0),
+        ],
+        docs,
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    let o = dyncontact(&[
+        "run",
+        example("vehicle_bridge_s1002_60e1.toml").to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success());
+    let (h, rows) = csv(&out.join("timeseries.csv"));
+    let col = |name: &str| column(&h, &rows, name)[0];
+    near("patch length [mm]", 1e3 * col("patch_length_m"), 9.99, 0.01);
+    near("patch width [mm]", 1e3 * col("patch_width_m"), 19.95, 0.01);
+    near(
+        "peak pressure [MPa]",
+        1e-6 * col("max_pressure_pa"),
+        785.6,
+        0.1,
+    );
+    near("approach [µm]", 1e6 * col("approach_m"), 53.42, 0.01);
+    near("static force [N]", col("contact_force_n"), 62293.5, 1e-3);
+}
+
 /// Every example file is checked by a test in this file (a new example needs its golden).
 #[test]
 fn every_example_has_a_golden_test() {

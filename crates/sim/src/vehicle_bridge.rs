@@ -76,6 +76,7 @@ pub mod linalg;
 pub mod moving_forces;
 mod outputs;
 mod picard;
+pub mod profiles;
 pub mod radau;
 mod rigid;
 pub mod run;

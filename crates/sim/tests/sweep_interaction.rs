@@ -144,7 +144,7 @@ fn hslm_trains_get_vehicle_models_whose_wheels_carry_p() {
             wheels,
             moving_forces: Vec::new(),
             speed: 1e-6,
-            contact: model.contact,
+            contact: model.contact.clone(),
             geometry: model.geometry,
             irregularity: sim::vehicle_bridge::Irregularity::None,
             integrator: model.integrator,

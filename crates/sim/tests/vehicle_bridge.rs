@@ -80,7 +80,7 @@ fn crawling_wheel_gives_static_deflection_and_weight() {
                 bridge(support, 40),
                 vec![heavy_wheel(0.5 * L - speed * duration)],
                 speed,
-                contact,
+                contact.clone(),
                 1e-3,
             );
             sc.damping = ModalDamping::Uniform(0.7);
@@ -141,7 +141,7 @@ fn light_wheel_reproduces_moving_force() {
             bridge(Support::SimplySupported, modes),
             vec![wheel],
             speed,
-            contact,
+            contact.clone(),
             dt,
         );
         sc.damping = ModalDamping::Uniform(0.02);

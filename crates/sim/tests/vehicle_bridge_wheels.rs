@@ -184,7 +184,7 @@ fn wheel_jumps_over_a_dip_with_every_model() {
             static_load: p,
             ..WheelSpec::default()
         };
-        let mut sc = scenario(vec![wheel], contact, 5e-5);
+        let mut sc = scenario(vec![wheel], contact.clone(), 5e-5);
         sc.irregularity = Irregularity::Dip {
             position: -2.0,
             length: 0.4,

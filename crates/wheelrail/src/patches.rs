@@ -124,22 +124,39 @@ struct Group<'a> {
 }
 
 /// Plane extent across the track where the rigid overlap h(0, t) < depth, around `t0`
-/// (stepping out in 2 µm steps to the first t where it exceeds `depth`).
+/// (stepping out in 2 µm steps to the first t where it exceeds `depth`, at most 0.1 m).
+///
+/// The walk goes in strides of [`STRIDE`] steps, checking the stride's end, and repeats the
+/// stride step by step where it ends outside: the same first exceedance as the plain 2 µm
+/// walk (unless h(0, t) exceeds `depth` and falls back within one stride of 50 µm, far below
+/// a patch's width), with about 1/[`STRIDE`] of the profile evaluations.
 fn extent(plane: &ContactPlane<'_>, t0: f64, depth: f64) -> (f64, f64) {
-    let step = 2e-6;
+    const STEP: f64 = 2e-6;
+    const STEPS: usize = 50_000;
+    let inside = |t: f64| matches!(plane.cross_gap(t), Some(h) if h < depth);
     let walk = |dir: f64| -> f64 {
-        let mut t = t0;
-        for _ in 0..50_000 {
-            let next = t + dir * step;
-            match plane.cross_gap(next) {
-                Some(h) if h < depth => t = next,
-                _ => return next,
+        let at = |k: usize| t0 + dir * STEP * k as f64;
+        let mut k = 0;
+        while k < STEPS {
+            let end = (k + STRIDE).min(STEPS);
+            if inside(at(end)) {
+                k = end;
+                continue;
             }
+            for j in k + 1..=end {
+                if !inside(at(j)) {
+                    return at(j);
+                }
+            }
+            k = end;
         }
-        t
+        at(STEPS)
     };
     (walk(-1.0), walk(1.0))
 }
+
+/// Steps of 2 µm checked at once by [`extent`].
+const STRIDE: usize = 25;
 
 fn sample(plane: &ContactPlane<'_>, grid: &Grid) -> Vec<f64> {
     let mut out = vec![f64::INFINITY; grid.len()];

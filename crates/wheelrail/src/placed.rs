@@ -61,19 +61,45 @@ impl<'a> PlacedProfile<'a> {
         if !(y_track >= ylo && y_track <= yhi) {
             return None;
         }
+        // Safeguarded Newton on Y(y) = y_track (dY/dy = cos θ − σ sin θ z′(y) > 0): the
+        // bracket [a, b] always holds the root; a Newton step is taken when it stays inside
+        // and shrinks the step at least by half, a bisection otherwise; stops at a step below
+        // 1e-15 m or a bracket below 1e-14 m.
+        let (s, c) = self.angle.sin_cos();
         let (mut a, mut b) = (lo, hi);
-        for _ in 0..64 {
-            let m = 0.5 * (a + b);
-            if self.map(m)?.0 < y_track {
-                a = m;
+        let mut y = if yhi > ylo {
+            (lo + (hi - lo) * (y_track - ylo) / (yhi - ylo)).clamp(lo, hi)
+        } else {
+            0.5 * (lo + hi)
+        };
+        let mut step_old = hi - lo;
+        for _ in 0..200 {
+            let (z, dz, _) = self.profile.eval(y)?;
+            let f = c * y - s * self.sign * z + self.offset.0 - y_track;
+            if f < 0.0 {
+                a = y;
             } else {
-                b = m;
+                b = y;
             }
-            if b - a < 1e-14 {
+            let slope = c - s * self.sign * dz;
+            let newton = y - f / slope;
+            let step = if slope > 0.0
+                && newton >= a
+                && newton <= b
+                && 2.0 * f.abs() <= (step_old * slope).abs()
+            {
+                let d = y - newton;
+                y = newton;
+                d
+            } else {
+                y = 0.5 * (a + b);
+                0.5 * (b - a)
+            };
+            step_old = step;
+            if step.abs() < 1e-15 || b - a < 1e-14 {
                 break;
             }
         }
-        let y = 0.5 * (a + b);
         Some(self.point_at_local(y))
     }
 

@@ -109,6 +109,11 @@ pub fn estimate(config: &ScenarioConfig) -> Option<WorkEstimate> {
             let contact = match s.contact {
                 ContactModel::Rigid | ContactModel::Hertz => 200.0,
                 ContactModel::Bem { elements, .. } => 3.0 * bem_solve((elements * elements) as f64),
+                // Every evaluation sets up its patch solvers afresh (no warm start): about
+                // twice the work of a warm-started solve.
+                ContactModel::BemProfiles(ref p) => {
+                    6.0 * bem_solve((p.elements * p.elements) as f64)
+                }
             };
             let radau = match s.integrator {
                 crate::vehicle_bridge::Integrator::Radau5(_) => 6.0,

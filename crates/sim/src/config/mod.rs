@@ -165,7 +165,7 @@ fn build(
         }
         "vehicle_bridge" => {
             let file = deserialize(table, text)?;
-            vehicle_bridge::build(file).map(|c| ScenarioConfig::VehicleBridge(Box::new(c)))
+            vehicle_bridge::build_in(file, base).map(|c| ScenarioConfig::VehicleBridge(Box::new(c)))
         }
         "sweep" => {
             let file = deserialize(table, text)?;

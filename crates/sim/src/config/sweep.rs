@@ -598,7 +598,7 @@ fn interaction_model(
             dt: f64::NAN,
         });
     }
-    let (contact, geometry) = vb::contact_of(contact, wheels_max)?;
+    let (contact, geometry) = vb::contact_of(contact, wheels_max, None)?;
     let mut model = InteractionModel {
         basis,
         damping: bridge.damping,
@@ -616,7 +616,7 @@ fn interaction_model(
             wheels: v.wheels.clone(),
             moving_forces: v.forces.clone(),
             speed: top_speed,
-            contact,
+            contact: model.contact.clone(),
             geometry,
             irregularity: Irregularity::None,
             integrator,

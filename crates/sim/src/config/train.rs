@@ -142,7 +142,17 @@ fn vehicle(v: &VehicleTable, key: &str) -> Result<Vec<VehicleSpec>, ConfigError>
     };
     let length = ranges::POSITION.check(&format!("{key}.length"), need(v.length, "length")?)?;
     let mass = |value: Option<f64>, name: &str| -> Result<f64, ConfigError> {
-        ranges::MASS_OR_ZERO.check(&format!("{key}.{name}"), need(value, name)?)
+        let m = ranges::MASS_OR_ZERO.check(&format!("{key}.{name}"), need(value, name)?)?;
+        // The wheels' and bodies' range (`vehicle.wheels[k]` in check_ranges), named here
+        // by the train's key.
+        if m != 0.0 && !ranges::VEHICLE_MASS.contains(m) {
+            bail!(
+                "`{key}.{name}` = {}: must be 0 or lie in {}",
+                checks::number(m),
+                ranges::VEHICLE_MASS
+            );
+        }
+        Ok(m)
     };
     let stiffness = |value: Option<f64>, name: &str| -> Result<f64, ConfigError> {
         ranges::STIFFNESS.check(&format!("{key}.{name}"), need(value, name)?)

@@ -1,6 +1,9 @@
 //! `kind = "vehicle_bridge"`: wheels over a modal bridge with local contact
 //! (docs/vehicle_bridge.md). Every key is in SI units; unknown keys are errors.
 
+use std::path::Path;
+use std::sync::Arc;
+
 use halfspace::law::ContactLaw;
 use serde::Deserialize;
 
@@ -15,6 +18,8 @@ pub use super::irregularity::{
 };
 pub use super::train_wheels::MAX_ARTICULATED_BODIES;
 use super::train_wheels::train_wheels;
+use super::wheel_rail::{ProfileKeys, profile_setup};
+use crate::vehicle_bridge::profiles::ProfileContact;
 use crate::vehicle_bridge::traction::{TractionDrive, TractionMethod, TractionSpec};
 use crate::vehicle_bridge::{
     ContactGeometry, ContactModel, CouplingSolver, CouplingSpec, GRAVITY, Integrator, Irregularity,
@@ -184,6 +189,24 @@ pub struct ContactSpec {
     pub grid: Option<usize>,
     pub bem_tol: Option<f64>,
     pub reuse_tol: Option<f64>,
+    /// Real wheel and rail profiles (`model = "bem"` only; docs/profiles.md).
+    pub profiles: Option<ProfilesToml>,
+}
+
+/// `[contact.profiles]`: the keys of `[gap] kind = "wheel_rail"` that place the wheelset
+/// (same names, defaults and ranges; [`super::wheel_rail::ProfileKeys`]).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProfilesToml {
+    pub wheel: Option<String>,
+    pub rail: Option<String>,
+    pub inclination: Option<toml::Value>,
+    pub gauge: Option<f64>,
+    pub back_to_back: Option<f64>,
+    pub wheel_radius: Option<f64>,
+    pub lateral_shift: Option<f64>,
+    pub roll: Option<f64>,
+    pub smoothing: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -247,9 +270,16 @@ pub struct OutputSpec {
     pub snapshots: Option<usize>,
 }
 
-/// Parses and validates a scenario file's text.
+/// Parses and validates a scenario file's text (profile files of `[contact.profiles]`
+/// relative to the working directory).
 pub fn parse(text: &str) -> Result<VehicleBridgeConfig, ConfigError> {
     build(super::from_str(text)?)
+}
+
+/// Parses and validates a scenario file's text, profile files of `[contact.profiles]`
+/// relative to `base`.
+pub fn parse_in(text: &str, base: &Path) -> Result<VehicleBridgeConfig, ConfigError> {
+    build_in(super::from_str(text)?, base)
 }
 
 /// The wheels of `[vehicle]`.
@@ -277,8 +307,14 @@ fn vehicle_wheels(vehicle: &VehicleSpec) -> Result<Vec<WheelSpec>, ConfigError> 
         .collect())
 }
 
-/// Validates a parsed scenario file.
+/// Validates a parsed scenario file (profile files of `[contact.profiles]` relative to the
+/// working directory).
 pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError> {
+    build_in(file, Path::new("."))
+}
+
+/// Validates a parsed scenario file, profile files of `[contact.profiles]` relative to `base`.
+pub fn build_in(file: VehicleBridgeFile, base: &Path) -> Result<VehicleBridgeConfig, ConfigError> {
     // Sizes first, before the bridge's modes are computed.
     let (wheels, speed, vehicles, moving_forces, train) = match (&file.vehicle, &file.train) {
         (Some(vehicle), None) => (
@@ -310,7 +346,7 @@ pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError
     let length = bridge.basis.length();
 
     let c = file.contact.as_ref();
-    let (contact, geometry) = contact_of(c, wheels.len())?;
+    let (contact, geometry) = contact_of(c, wheels.len(), Some(base))?;
 
     let irregularity = match &file.irregularity {
         None => Irregularity::None,
@@ -391,6 +427,11 @@ pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError
     check_implicit(&scenario)?;
     check_coupling(&scenario)?;
     let traction = traction(file.traction.as_ref())?;
+    if traction.is_some() && matches!(scenario.contact, ContactModel::BemProfiles(_)) {
+        bail!(
+            "[traction]: not available with [contact.profiles] (the creep forces use the Hertz geometry of contact.wheel_radius and contact.rail_profile_radius; the profile contact is normal only)"
+        );
+    }
     let track = super::track::track(file.track.as_ref())?;
     if let Some(t) = &track {
         super::track::check_size(t, length)?;
@@ -408,11 +449,24 @@ pub fn build(file: VehicleBridgeFile) -> Result<VehicleBridgeConfig, ConfigError
 }
 
 /// The contact model and geometry of a `[contact]` table (vehicle_bridge; the sweep's
-/// interaction model), for `wheels` wheels (each BEM wheel holds its own grid).
+/// interaction model), for `wheels` wheels (each BEM wheel holds its own grid). `profiles`:
+/// the directory profile files are resolved against, `None` where `[contact.profiles]` is
+/// not available (sweeps).
 pub(crate) fn contact_of(
     c: Option<&ContactSpec>,
     wheels: usize,
+    profiles: Option<&Path>,
 ) -> Result<(ContactModel, ContactGeometry), ConfigError> {
+    if let Some(spec) = c
+        && let Some(table) = &spec.profiles
+    {
+        let Some(base) = profiles else {
+            bail!(
+                "[contact.profiles]: real profiles are available in kind = \"vehicle_bridge\" scenarios only"
+            );
+        };
+        return profile_contact(spec, table, wheels, base);
+    }
     let geometry = ContactGeometry {
         wheel_radius: c
             .and_then(|c| c.wheel_radius)
@@ -460,6 +514,83 @@ pub(crate) fn contact_of(
         bail!("[contact]: `grid`, `bem_tol` and `reuse_tol` apply to model = \"bem\" only");
     }
     Ok((contact, geometry))
+}
+
+/// Elements per direction of each patch grid with `[contact.profiles]` (as `[grid] n` of a
+/// wheel–rail contact case).
+const PROFILE_PATCH_ELEMENTS: checks::Range = checks::Range::closed(8.0, 512.0, "elements");
+
+/// `[contact]` with `[contact.profiles]`: the profile contact of `model = "bem"`
+/// ([`ProfileContact`]); `wheel_radius` comes from the profiles' table, the material from
+/// `E`, `nu`.
+fn profile_contact(
+    c: &ContactSpec,
+    table: &ProfilesToml,
+    wheels: usize,
+    base: &Path,
+) -> Result<(ContactModel, ContactGeometry), ConfigError> {
+    let model = c.model.as_deref().unwrap_or(DEFAULT_CONTACT_MODEL);
+    if model != "bem" {
+        bail!(
+            "[contact] `model` = \"{model}\": [contact.profiles] needs model = \"bem\" (the profiles' patches are solved by the half-space solver)"
+        );
+    }
+    for (key, set) in [
+        ("wheel_radius", c.wheel_radius.is_some()),
+        ("rail_profile_radius", c.rail_profile_radius.is_some()),
+        ("bem_tol", c.bem_tol.is_some()),
+        ("reuse_tol", c.reuse_tol.is_some()),
+    ] {
+        if set {
+            bail!(
+                "[contact] `{key}` is not used with [contact.profiles] (the radii come from the profiles and their `wheel_radius`; each patch is solved to the solver's default tolerance)"
+            );
+        }
+    }
+    let setup = profile_setup(
+        &ProfileKeys {
+            wheel: table.wheel.as_deref(),
+            rail: table.rail.as_deref(),
+            inclination: table.inclination.as_ref(),
+            gauge: table.gauge,
+            back_to_back: table.back_to_back,
+            wheel_radius: table.wheel_radius,
+            lateral_shift: table.lateral_shift,
+            roll: table.roll,
+            smoothing: table.smoothing,
+        },
+        "contact.profiles",
+        base,
+    )?;
+    let elements = c.grid.unwrap_or(DEFAULT_BEM_GRID);
+    PROFILE_PATCH_ELEMENTS.check("contact.grid", elements as f64)?;
+    checks::memory(
+        "`contact.grid` for every wheel",
+        (elements * elements) as f64 * wheels as f64,
+        checks::GRID_BYTES_PER_ELEMENT,
+    )?;
+    let geometry = ContactGeometry {
+        wheel_radius: setup.wheelset.params().wheel_radius,
+        rail_profile_radius: DEFAULT_GEOMETRY.rail_profile_radius,
+        youngs_modulus: c.e.unwrap_or(DEFAULT_GEOMETRY.youngs_modulus),
+        poisson_ratio: c.nu.unwrap_or(DEFAULT_GEOMETRY.poisson_ratio),
+    };
+    let contact = ProfileContact {
+        wheelset: Arc::new(setup.wheelset),
+        lateral_shift: setup.lateral_shift,
+        roll: setup.roll,
+        elements,
+    };
+    // The rigid geometry once here: an error names the table, not a wheel of the run.
+    contact
+        .law(geometry.material().map_err(|e| invalid!("{e}"))?)
+        .map_err(|e| {
+            invalid!(
+                "[contact.profiles] at `lateral_shift` = {} m: {e}",
+                setup.lateral_shift
+            )
+        })?;
+    Ok((ContactModel::BemProfiles(contact), geometry))
 }
 
 /// `[contact] reuse_tol`: 0 (the default, a solve at every evaluation) … 1e-2.
@@ -525,7 +656,11 @@ const MAX_APPROACH_PER_RADIUS: f64 = 0.01;
 /// (half-space contact); a tiny radius under a wheel load would put the BEM grid outside the
 /// wheel circle. Checked under each wheel's static load (rigid contact has no patch).
 fn check_patch_small(s: &Scenario) -> Result<(), ConfigError> {
-    if s.contact == ContactModel::Rigid {
+    if matches!(
+        s.contact,
+        ContactModel::Rigid | ContactModel::BemProfiles(_)
+    ) {
+        // The profile contact sizes each patch from its own curvatures (ProfileLaw).
         return Ok(());
     }
     let mut law = s.geometry.hertz().map_err(|e| invalid!("{e}"))?;
@@ -568,21 +703,53 @@ pub fn default_dt(s: &Scenario) -> Result<f64, ConfigError> {
     } else {
         DEFAULT_DT_CONTACT
     };
-    let mut law = s.geometry.hertz().map_err(|e| invalid!("{e}"))?;
+    let mut law: Box<dyn ContactLaw> = match &s.contact {
+        ContactModel::BemProfiles(p) => Box::new(
+            p.law(s.geometry.material().map_err(|e| invalid!("{e}"))?)
+                .map_err(|e| invalid!("[contact.profiles]: {e}"))?,
+        ),
+        _ => Box::new(s.geometry.hertz().map_err(|e| invalid!("{e}"))?),
+    };
     let mut dt = DEFAULT_DT;
+    // Contact stiffness per static load (the profile law solves for it; trains repeat loads).
+    let mut known: Vec<(f64, f64)> = Vec::new();
     for w in &s.wheels {
         let load = (w.wheel_mass + w.body_mass) * s.gravity + w.static_load;
         if !(w.wheel_mass > 0.0 && load > 0.0) {
             continue;
         }
-        let approach = law.static_approach(load).map_err(|e| invalid!("{e}"))?;
-        let stiffness = 1.5 * load / approach;
+        let stiffness = match known.iter().find(|(l, _)| *l == load) {
+            Some(&(_, k)) => k,
+            None => {
+                let k = static_stiffness(law.as_mut(), load)?;
+                known.push((load, k));
+                k
+            }
+        };
         let f_c = (stiffness / w.wheel_mass).sqrt() / std::f64::consts::TAU;
         if f_c.is_finite() && f_c > 0.0 {
             dt = dt.min(target / f_c);
         }
     }
     Ok(dt)
+}
+
+/// The contact stiffness dF/dδ of `law` at its static approach under `load` \[N\]: 3W/(2δ)
+/// for the Hertz law (references.md §C4.1), the profile law's own tangent.
+fn static_stiffness(law: &mut dyn ContactLaw, load: f64) -> Result<f64, ConfigError> {
+    let approach = law.static_approach(load).map_err(|e| invalid!("{e}"))?;
+    if law.name() != "bem_profiles" {
+        return Ok(1.5 * load / approach);
+    }
+    let mut force = [0.0];
+    let out = law
+        .evaluate(approach, &[0.0], &mut force, true)
+        .map_err(|e| invalid!("{e}"))?;
+    Ok(if out.stiffness > 0.0 {
+        out.stiffness
+    } else {
+        1.5 * load / approach
+    })
 }
 
 /// The simulated time of a scenario: `integrator.duration`, or until the rearmost wheel or

@@ -84,6 +84,7 @@ pub fn parse(text: &str, base: &Path) -> Result<Option<WheelRailConfig>, ConfigE
 }
 
 fn profile(
+    table: &str,
     key: &str,
     value: Option<&str>,
     default: &str,
@@ -100,13 +101,13 @@ fn profile(
     let path = base.join(name);
     if !path.is_file() {
         bail!(
-            "[gap] `{key}` = \"{name}\": neither a built-in profile (allowed: {}) nor a profile file ({} does not exist)",
+            "[{table}] `{key}` = \"{name}\": neither a built-in profile (allowed: {}) nor a profile file ({} does not exist)",
             builtin.join(", "),
             path.display()
         );
     }
     let text = std::fs::read_to_string(&path).map_err(|source| ConfigError::Io {
-        context: format!("[gap] cannot read `{key}` {}", path.display()),
+        context: format!("[{table}] cannot read `{key}` {}", path.display()),
         source,
     })?;
     let kind = if key == "wheel" {
@@ -115,11 +116,11 @@ fn profile(
         wheelrail::ProfileKind::Rail
     };
     wheelrail::parse_profile(name, &text, kind, 1e-3, smoothing)
-        .map_err(|e| invalid!("[gap] `{key}` = \"{name}\" ({}): {e}", path.display()))
+        .map_err(|e| invalid!("[{table}] `{key}` = \"{name}\" ({}): {e}", path.display()))
 }
 
 /// The inclination key: "1:N" (N ≥ 20), "0", or the tangent.
-fn inclination(value: Option<&toml::Value>) -> Result<(f64, String), ConfigError> {
+fn inclination(table: &str, value: Option<&toml::Value>) -> Result<(f64, String), ConfigError> {
     let Some(v) = value else {
         return Ok((1.0 / 40.0, "1:40".into()));
     };
@@ -132,23 +133,23 @@ fn inclination(value: Option<&toml::Value>) -> Result<(f64, String), ConfigError
                 let (a, b): (f64, f64) = match (a.trim().parse(), b.trim().parse()) {
                     (Ok(a), Ok(b)) if b != 0.0 => (a, b),
                     _ => bail!(
-                        "[gap] `inclination` = \"{s}\": expected a ratio like \"1:40\", \"0\" or a number"
+                        "[{table}] `inclination` = \"{s}\": expected a ratio like \"1:40\", \"0\" or a number"
                     ),
                 };
                 a / b
             } else {
                 bail!(
-                    "[gap] `inclination` = \"{s}\": expected a ratio like \"1:40\", \"0\" or a number"
+                    "[{table}] `inclination` = \"{s}\": expected a ratio like \"1:40\", \"0\" or a number"
                 )
             }
         }
         toml::Value::Float(f) => *f,
         toml::Value::Integer(i) => *i as f64,
         other => bail!(
-            "[gap] `inclination` = {other}: expected a ratio like \"1:40\", \"0\" or a number"
+            "[{table}] `inclination` = {other}: expected a ratio like \"1:40\", \"0\" or a number"
         ),
     };
-    INCLINATION.check("gap.inclination", t)?;
+    INCLINATION.check(&format!("{table}.inclination"), t)?;
     let label = match v {
         toml::Value::String(s) => s.trim().to_string(),
         _ => format!("{t}"),
@@ -191,45 +192,21 @@ pub fn build(case: &ContactCase, base: &Path) -> Result<WheelRailConfig, ConfigE
         );
     }
     let material = checked_material(&case.body1, &case.body2)?;
-    let smoothing = SMOOTHING.check("gap.smoothing", g.smoothing.unwrap_or(0.0))?;
-    let wheel = profile(
-        "wheel",
-        g.wheel.as_deref(),
-        "S1002",
-        WHEELS,
+    let setup = profile_setup(
+        &ProfileKeys {
+            wheel: g.wheel.as_deref(),
+            rail: g.rail.as_deref(),
+            inclination: g.inclination.as_ref(),
+            gauge: g.gauge,
+            back_to_back: g.back_to_back,
+            wheel_radius: g.wheel_radius,
+            lateral_shift: g.lateral_shift,
+            roll: g.roll,
+            smoothing: g.smoothing,
+        },
+        "gap",
         base,
-        smoothing,
     )?;
-    let rail = profile("rail", g.rail.as_deref(), "60E1", RAILS, base, smoothing)?;
-    let (incl, inclination_label) = inclination(g.inclination.as_ref())?;
-    let defaults = WheelsetParams::default();
-    let params = WheelsetParams {
-        gauge: GAUGE.check("gap.gauge", g.gauge.unwrap_or(defaults.gauge))?,
-        inclination: incl,
-        back_to_back: BACK_TO_BACK.check(
-            "gap.back_to_back",
-            g.back_to_back.unwrap_or(defaults.back_to_back),
-        )?,
-        wheel_radius: WHEEL_RADIUS.check(
-            "gap.wheel_radius",
-            g.wheel_radius.unwrap_or(defaults.wheel_radius),
-        )?,
-        ..defaults
-    };
-    if params.gauge <= params.back_to_back {
-        bail!(
-            "[gap] `gauge` = {} must exceed `back_to_back` = {}",
-            params.gauge,
-            params.back_to_back
-        );
-    }
-    let lateral_shift = SHIFT.check("gap.lateral_shift", g.lateral_shift.unwrap_or(0.0))?;
-    let roll = match g.roll {
-        None => Roll::Equilibrium,
-        Some(r) => Roll::Fixed(ROLL.check("gap.roll", r)?),
-    };
-    let wheelset =
-        Wheelset::new(wheel, rail, params).map_err(|e| invalid!("[gap] wheelset: {e}"))?;
     let load = match (case.load.force, case.load.approach) {
         (Some(f), None) => WheelLoad::VerticalForce(FORCE.check("load.force", f)?),
         (None, Some(d)) => WheelLoad::VerticalApproach(APPROACH.check("load.approach", d)?),
@@ -267,12 +244,98 @@ pub fn build(case: &ContactCase, base: &Path) -> Result<WheelRailConfig, ConfigE
         options.ny = DEFAULT_PATCH_ELEMENTS;
     }
     Ok(WheelRailConfig {
-        wheelset,
+        wheelset: setup.wheelset,
         material,
         load,
+        lateral_shift: setup.lateral_shift,
+        roll: setup.roll,
+        options,
+        inclination_label: setup.inclination_label,
+    })
+}
+
+/// The keys that place a wheelset on its track with its profiles, shared by `[gap]` with
+/// `kind = "wheel_rail"` and the vehicle–bridge `[contact.profiles]` (same names, defaults
+/// and ranges; docs/profiles.md).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct ProfileKeys<'a> {
+    /// Wheel profile: built-in name or a profile file.
+    pub wheel: Option<&'a str>,
+    /// Rail profile: built-in name or a profile file.
+    pub rail: Option<&'a str>,
+    /// Rail inclination, "1:20", "1:40", "0" or its tangent.
+    pub inclination: Option<&'a toml::Value>,
+    /// Track gauge \[m\].
+    pub gauge: Option<f64>,
+    /// Back-to-back distance of the wheels \[m\].
+    pub back_to_back: Option<f64>,
+    /// Nominal rolling radius \[m\].
+    pub wheel_radius: Option<f64>,
+    /// Lateral shift of the wheelset \[m\].
+    pub lateral_shift: Option<f64>,
+    /// Prescribed roll \[rad\] (default: both wheels on their rails).
+    pub roll: Option<f64>,
+    /// Smoothing parameter λ \[m³\] of measured profiles.
+    pub smoothing: Option<f64>,
+}
+
+/// A wheelset with its profiles on its track, at its lateral shift and roll.
+#[derive(Debug, Clone)]
+pub struct ProfileSetup {
+    /// Wheelset, profiles and track.
+    pub wheelset: Wheelset,
+    /// Lateral shift of the wheelset \[m\].
+    pub lateral_shift: f64,
+    /// Roll: the equilibrium one or prescribed.
+    pub roll: Roll,
+    /// The inclination as written ("1:40", …).
+    pub inclination_label: String,
+}
+
+/// Validates the [`ProfileKeys`] of the table `table` (named in the errors: "gap",
+/// "contact.profiles"); profile files are resolved against `base`.
+pub fn profile_setup(
+    keys: &ProfileKeys<'_>,
+    table: &str,
+    base: &Path,
+) -> Result<ProfileSetup, ConfigError> {
+    let key = |k: &str| format!("{table}.{k}");
+    let smoothing = SMOOTHING.check(&key("smoothing"), keys.smoothing.unwrap_or(0.0))?;
+    let wheel = profile(table, "wheel", keys.wheel, "S1002", WHEELS, base, smoothing)?;
+    let rail = profile(table, "rail", keys.rail, "60E1", RAILS, base, smoothing)?;
+    let (incl, inclination_label) = inclination(table, keys.inclination)?;
+    let defaults = WheelsetParams::default();
+    let params = WheelsetParams {
+        gauge: GAUGE.check(&key("gauge"), keys.gauge.unwrap_or(defaults.gauge))?,
+        inclination: incl,
+        back_to_back: BACK_TO_BACK.check(
+            &key("back_to_back"),
+            keys.back_to_back.unwrap_or(defaults.back_to_back),
+        )?,
+        wheel_radius: WHEEL_RADIUS.check(
+            &key("wheel_radius"),
+            keys.wheel_radius.unwrap_or(defaults.wheel_radius),
+        )?,
+        ..defaults
+    };
+    if params.gauge <= params.back_to_back {
+        bail!(
+            "[{table}] `gauge` = {} must exceed `back_to_back` = {}",
+            params.gauge,
+            params.back_to_back
+        );
+    }
+    let lateral_shift = SHIFT.check(&key("lateral_shift"), keys.lateral_shift.unwrap_or(0.0))?;
+    let roll = match keys.roll {
+        None => Roll::Equilibrium,
+        Some(r) => Roll::Fixed(ROLL.check(&key("roll"), r)?),
+    };
+    let wheelset =
+        Wheelset::new(wheel, rail, params).map_err(|e| invalid!("[{table}] wheelset: {e}"))?;
+    Ok(ProfileSetup {
+        wheelset,
         lateral_shift,
         roll,
-        options,
         inclination_label,
     })
 }

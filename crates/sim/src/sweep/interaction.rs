@@ -141,7 +141,7 @@ fn passage_with(
         wheels: vehicles.wheels.clone(),
         moving_forces: vehicles.forces.clone(),
         speed,
-        contact: model.contact,
+        contact: model.contact.clone(),
         geometry: model.geometry,
         irregularity: Irregularity::None,
         integrator: model.integrator,

@@ -229,7 +229,7 @@ impl Simulation {
         // Contact laws.
         let mut contacts = Vec::with_capacity(static_loads.len());
         for &load in &static_loads {
-            contacts.push(wheel_contact(scenario.contact, &scenario.geometry, load)?);
+            contacts.push(wheel_contact(&scenario.contact, &scenario.geometry, load)?);
         }
 
         // Static start.

@@ -17,6 +17,9 @@
 //!   \[r(x+ξ) − r(x)\] carries the beam deflection and the irregularity at each grid column
 //!   relative to the wheel point. k_c = dF/dδ from the solver's sensitivity solve, computed
 //!   when the coupling asks for a tangent or has none yet ([`TangentPolicy::RequestedOrMissing`]).
+//! * `bem` with `[contact.profiles]`: [`wheelrail::ProfileLaw`], the patches of real wheel
+//!   and rail profiles at a fixed lateral shift (module [`profiles`](super::profiles)); one
+//!   column at ξ = 0.
 //! * `rigid`: [`RigidConstraint`], no force law; the simulation imposes δ = 0 while F > 0 with
 //!   a Lagrange multiplier (the wheel follows the rail).
 
@@ -136,11 +139,11 @@ impl ContactGeometry {
 /// The contact of one wheel for the scenario's `model`, with the static wheel load `load`
 /// \[N\] (the BEM grid is sized for 2.5 × the load).
 pub(super) fn wheel_contact(
-    model: ContactModel,
+    model: &ContactModel,
     geometry: &ContactGeometry,
     load: f64,
 ) -> Result<LawModel, VehicleBridgeError> {
-    Ok(match model {
+    Ok(match *model {
         ContactModel::Rigid => LawModel::Rigid(RigidConstraint::new(true)),
         ContactModel::Hertz => LawModel::Law(Box::new(geometry.hertz()?)),
         ContactModel::Bem {
@@ -153,6 +156,9 @@ pub(super) fn wheel_contact(
             tol,
             reuse_tol,
         )?)),
+        ContactModel::BemProfiles(ref profiles) => {
+            LawModel::Law(Box::new(profiles.law(geometry.material()?)?))
+        }
     })
 }
 

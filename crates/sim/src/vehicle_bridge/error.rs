@@ -30,6 +30,9 @@ pub enum VehicleBridgeError {
     /// The half-space contact solver failed.
     #[error("contact solver: {0}")]
     Contact(#[from] ContactError),
+    /// The wheel–rail profiles or their rigid contact geometry failed.
+    #[error("wheel–rail profiles: {0}")]
+    Profiles(#[from] wheelrail::WheelRailError),
     /// The contact law of wheel `wheel` (0-based) failed during a step.
     #[error("contact law of wheel {wheel}: {source}")]
     WheelContact {

@@ -163,6 +163,13 @@ impl Simulation {
     /// Switches on longitudinal friction (module [`traction`]; weak coupling after every
     /// step). Call before the first step; `exact` needs the `bem` contact law.
     pub fn set_traction(&mut self, spec: traction::TractionSpec) -> Result<(), VehicleBridgeError> {
+        if matches!(self.scenario.contact, super::ContactModel::BemProfiles(_)) {
+            return Err(super::error::invalid_text(
+                "traction",
+                spec.method.name(),
+                "not available with real profiles (contact.profiles): the creep forces need the Hertz geometry of contact.wheel_radius and contact.rail_profile_radius",
+            ));
+        }
         self.traction = Some(traction::Traction::new(
             spec,
             &self.scenario.geometry,

@@ -41,7 +41,7 @@ impl Default for WheelSpec {
 }
 
 /// The contact model.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub enum ContactModel {
     /// Wheel follows the rail (constraint).
     Rigid,
@@ -55,6 +55,10 @@ pub enum ContactModel {
         tol: f64,
         reuse_tol: f64,
     },
+    /// Half-space boundary elements on real wheel and rail profiles
+    /// ([`wheelrail::ProfileLaw`]; module [`profiles`](super::profiles)): every patch of the
+    /// wheel solved in its contact plane at each evaluation.
+    BemProfiles(super::profiles::ProfileContact),
 }
 
 /// The time integrator of the coupled system, chosen with the scenario.

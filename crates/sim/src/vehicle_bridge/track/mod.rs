@@ -194,7 +194,7 @@ impl Simulation {
         if scenario.contact != ContactModel::Hertz {
             let name = match scenario.contact {
                 ContactModel::Rigid => "rigid",
-                ContactModel::Bem { .. } => "bem",
+                ContactModel::Bem { .. } | ContactModel::BemProfiles(_) => "bem",
                 ContactModel::Hertz => "hertz",
             };
             return Err(invalid_text(
