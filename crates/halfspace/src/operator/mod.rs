@@ -56,6 +56,22 @@ pub trait InfluenceOperator {
     /// `out = M residual` with M ≈ A⁻¹ symmetric positive definite (NormCG's preconditioner;
     /// it changes the number of iterations, never the solution).
     fn precondition(&mut self, residual: &[f64], out: &mut [f64]);
+
+    /// [`Self::precondition`] where only the grid rows `rows` of `out` are needed (row iy
+    /// holds the elements `iy·nx .. (iy + 1)·nx`; NormCG passes the rows of the contact set):
+    /// those rows equal [`Self::precondition`]'s, the others are set to zero. The default
+    /// computes the whole product.
+    fn precondition_rows(
+        &mut self,
+        residual: &[f64],
+        out: &mut [f64],
+        rows: std::ops::Range<usize>,
+    ) {
+        self.precondition(residual, out);
+        let nx = self.grid().nx;
+        out[..rows.start * nx].fill(0.0);
+        out[rows.end * nx..].fill(0.0);
+    }
 }
 
 /// The FFT implementation (module documentation). Plans, the kernel table and the spectra of
@@ -135,6 +151,16 @@ impl InfluenceOperator for FftInfluence {
     fn precondition(&mut self, residual: &[f64], out: &mut [f64]) {
         self.conv.apply(&self.inverse, residual, out);
     }
+
+    /// Skips the last (inverse) row transforms of the rows not needed.
+    fn precondition_rows(
+        &mut self,
+        residual: &[f64],
+        out: &mut [f64],
+        rows: std::ops::Range<usize>,
+    ) {
+        self.conv.apply_rows(&self.inverse, residual, out, rows);
+    }
 }
 
 /// The direct O(n²) sum u_I = Σ_J A(x_I − x_J, y_I − y_J) p_J with every coefficient
@@ -204,5 +230,14 @@ impl InfluenceOperator for DirectInfluence {
 
     fn precondition(&mut self, residual: &[f64], out: &mut [f64]) {
         self.preconditioner.precondition(residual, out);
+    }
+
+    fn precondition_rows(
+        &mut self,
+        residual: &[f64],
+        out: &mut [f64],
+        rows: std::ops::Range<usize>,
+    ) {
+        self.preconditioner.precondition_rows(residual, out, rows);
     }
 }
