@@ -4,8 +4,9 @@
 
 use halfspace::operator::Update;
 use halfspace::{
-    Body, DirectInfluence, DirectTangentialInfluence, FftInfluence, FftTangentialInfluence, Grid,
-    InfluenceOperator, Material, TangentialInfluenceOperator, TangentialKernel,
+    Body, DenseInfluence, DirectInfluence, DirectTangentialInfluence, FftInfluence,
+    FftTangentialInfluence, Grid, InfluenceOperator, Material, TangentialInfluenceOperator,
+    TangentialKernel,
 };
 use proptest::prelude::*;
 
@@ -97,6 +98,53 @@ proptest! {
             let expected = if (lo..hi).contains(&(k / nx)) { *b } else { 0.0 };
             prop_assert!(a.to_bits() == expected.to_bits(), "element {k}: {a} vs {expected}");
         }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// The dense sums ([`DenseInfluence`]) against the FFT operator: the product (same
+    /// kernel table; 1e-12 of max |u|, the FFT's round-off) and the preconditioner (the FFT
+    /// one tabulated as its impulse response; 1e-12 of max |z|) on inputs with some zero
+    /// values, and the product against the direct sum of Love's formula.
+    #[test]
+    fn dense_sums_equal_fft_and_direct(
+        nx in 1usize..14,
+        ny in 1usize..14,
+        dx in 1e-6f64..1e-3,
+        aspect in 0.2f64..5.0,
+        g in 1e6f64..1e11,
+        nu in -0.5f64..0.49,
+        sparsity in 0u64..4,
+        seed in any::<u64>(),
+    ) {
+        let grid = Grid::new(nx, ny, dx, dx * aspect, 0.2 * dx, -0.4 * dx).unwrap();
+        let material = Material::from_combined(g, nu).unwrap();
+        let mut state = seed | 1;
+        let input: Vec<f64> = (0..grid.len())
+            .map(|_| {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                if state % 4 < sparsity { 0.0 } else { 1e8 * (state >> 11) as f64 / (1u64 << 53) as f64 }
+            })
+            .collect();
+        let mut fft = FftInfluence::new(grid, &material).unwrap();
+        let mut dense = DenseInfluence::new(grid, &material).unwrap();
+        let close = |a: &[f64], b: &[f64]| {
+            let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            a.iter().zip(b).all(|(x, y)| (x - y).abs() <= 1e-12 * scale)
+        };
+        let (mut a, mut b) = (vec![0.0; grid.len()], vec![0.0; grid.len()]);
+        fft.apply(&input, &mut a);
+        dense.apply(&input, &mut b);
+        prop_assert!(close(&b, &a), "product {nx}x{ny}");
+        DirectInfluence::new(grid, material).unwrap().apply(&input, &mut a);
+        prop_assert!(close(&b, &a), "product against the direct sum {nx}x{ny}");
+        fft.precondition(&input, &mut a);
+        dense.precondition(&input, &mut b);
+        prop_assert!(close(&b, &a), "preconditioner {nx}x{ny}");
     }
 }
 

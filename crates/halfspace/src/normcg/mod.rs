@@ -46,7 +46,8 @@
 //! small change of δ, i.e. the one-sided derivative of the discrete problem.
 //!
 //! **Operator.** Every product with A, the sparse column updates and the preconditioner go
-//! through [`InfluenceOperator`]: [`NormalSolver::new`] uses [`FftInfluence`],
+//! through [`InfluenceOperator`]: [`NormalSolver::new`] uses [`NormalInfluence`] (the FFT
+//! operator [`crate::FftInfluence`], with dense sums for sparse inputs on small grids),
 //! [`NormalSolver::with_operator`] any implementation (e.g. the direct O(n²) oracle
 //! [`crate::DirectInfluence`]).
 
@@ -56,7 +57,7 @@ mod sensitivity;
 use crate::error::{ContactError, positive};
 use crate::grid::Grid;
 use crate::material::Material;
-use crate::operator::{FftInfluence, InfluenceOperator};
+use crate::operator::{InfluenceOperator, NormalInfluence};
 use crate::solution::NormalSolution;
 use active_set::{
     contact_rows, initial_force_guess, list_mean, list_mean_loaded, mean_over, remove_list_mean,
@@ -177,13 +178,14 @@ enum WarmStart {
 }
 
 /// Solver of the normal contact problem on one grid and material pair, generic over the
-/// influence operator `A` (default: the FFT convolution [`FftInfluence`]).
+/// influence operator `A` (default: [`NormalInfluence`], the FFT convolution with dense sums
+/// for sparse inputs on small grids).
 ///
 /// Owns the operator (for the FFT one: plans and the spectra of A_nn and of the
 /// preconditioner, computed once) and all work vectors; repeated solves (time stepping)
 /// allocate only their result, and start from the previous pressure when `warm_start` is set.
 #[derive(Debug)]
-pub struct NormalSolver<A: InfluenceOperator = FftInfluence> {
+pub struct NormalSolver<A: InfluenceOperator = NormalInfluence> {
     operator: A,
     work: Workspace,
     /// What the workspace holds for a warm start.
@@ -193,9 +195,10 @@ pub struct NormalSolver<A: InfluenceOperator = FftInfluence> {
 }
 
 impl NormalSolver {
-    /// Tabulate the influence kernel, plan the FFTs and build the preconditioner.
+    /// Tabulate the influence kernel, plan the FFTs and build the preconditioner
+    /// ([`NormalInfluence`]).
     pub fn new(grid: Grid, material: Material) -> Result<Self, ContactError> {
-        Self::with_operator(FftInfluence::new(grid, &material)?)
+        Self::with_operator(NormalInfluence::new(grid, &material)?)
     }
 }
 

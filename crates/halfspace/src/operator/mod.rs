@@ -6,7 +6,11 @@
 //! of the two elements only, so the product u = A p is a discrete convolution.
 //!
 //! * [`FftInfluence`]: the zero-padded FFT convolution with the tabulated circulant kernel,
-//!   O(n log n) (the default operator of [`crate::NormalSolver`]);
+//!   O(n log n);
+//! * [`DenseInfluence`]: the sums over the non-zero inputs with the same tabulated kernel,
+//!   O(n·m) for m non-zero inputs: faster on small grids with small contact sets;
+//! * [`NormalInfluence`]: the default operator of [`crate::NormalSolver`]: per product the
+//!   FFT or, on small grids and for few non-zero inputs, the dense sums (measured cross-over);
 //! * [`DirectInfluence`]: the O(n²) sum straight from Love's formula; its products use no
 //!   table and no FFT (only its preconditioner is the FFT one, see below): the first-class
 //!   slow oracle (as RustFFT's `Dft` is for its FFTs), for tests and for checking the fast
@@ -24,6 +28,8 @@
 //! up to round-off (both use the same FFT preconditioner, which only steers the iteration),
 //! so the two solutions agree to ~1e-12 (tests/operator_solvers.rs).
 
+pub mod auto;
+pub mod dense;
 pub mod tangential;
 
 use crate::convolution::{FftConvolution, KernelSpectrum};
@@ -32,6 +38,8 @@ use crate::grid::Grid;
 use crate::influence::{circulant_kernel, normal_influence};
 use crate::material::Material;
 
+pub use auto::NormalInfluence;
+pub use dense::DenseInfluence;
 pub use tangential::{
     DirectTangentialInfluence, FftTangentialInfluence, TangentialInfluenceOperator,
     TangentialKernel, Update,
