@@ -715,12 +715,21 @@ mod tests {
     use super::*;
 
     /// The sparse clipping correction equals a full recomputation of u = A p (both use the
-    /// same kernel; the direct sum and the FFT agree to round-off, 1e-12 relative).
+    /// same kernel; the direct sum and the FFT agree to round-off, 1e-12 relative), on a small
+    /// grid and on one whose column sums are split over the threads (≥ 128 × 128).
     #[test]
     fn clipping_correction_equals_recomputation() {
-        let grid = Grid::new(7, 5, 1e-4, 1.5e-4, 0.0, 0.0).unwrap();
+        for (nx, ny) in [(7, 5), (130, 129)] {
+            clipping_correction_case(nx, ny);
+        }
+    }
+
+    fn clipping_correction_case(nx: usize, ny: usize) {
+        let grid = Grid::new(nx, ny, 1e-4, 1.5e-4, 0.0, 0.0).unwrap();
         let material = Material::from_combined(8e10, 0.3).unwrap();
-        let mut solver = NormalSolver::new(grid, material).unwrap();
+        let mut solver =
+            NormalSolver::with_operator(crate::FftInfluence::new(grid, &material).unwrap())
+                .unwrap();
         let n = grid.len();
         for i in 0..n {
             solver.work.p[i] = 1e8 * (((i * 37 + 3) % 11) as f64 + 1.0);
@@ -728,7 +737,7 @@ mod tests {
         solver.exact_displacement();
         // Clip three elements (corner, edge, interior) as the projection would.
         solver.work.clipped.clear();
-        for &j in &[0usize, 6, 17] {
+        for &j in &[0usize, nx - 1, n / 2 + 3] {
             let dp = -solver.work.p[j];
             solver.work.p[j] = 0.0;
             solver.work.clipped.push((j, dp));

@@ -133,26 +133,29 @@ impl InfluenceOperator for FftInfluence {
         self.conv.apply(&self.spectrum, pressure, displacement);
     }
 
-    /// Reads the columns from the circulant kernel table: contiguous rows, no allocation.
+    /// Reads the columns from the circulant kernel table: contiguous rows, no allocation. On
+    /// large grids the rows are split over the rayon threads; every element receives the
+    /// columns in the order of `changes` whatever the split, so the result does not depend
+    /// on the number of threads.
     fn add_columns(&mut self, changes: &[(usize, f64)], displacement: &mut [f64]) {
         let (nx, ny) = (self.grid.nx, self.grid.ny);
-        let (mx, my) = (2 * nx, 2 * ny);
         assert_eq!(displacement.len(), nx * ny, "one value per element");
-        for &(j, dp) in changes {
-            let (jx, jy) = (j % nx, j / nx);
-            for iy in 0..ny {
-                let dj = (iy + my - jy) % my;
-                let row = &self.kernel[dj * mx..(dj + 1) * mx];
-                let u_row = &mut displacement[iy * nx..(iy + 1) * nx];
-                // Offsets ix − jx < 0 wrap to the end of the circulant row.
-                let (left, right) = u_row.split_at_mut(jx);
-                for (u, k) in left.iter_mut().zip(&row[mx - jx..]) {
-                    *u += k * dp;
-                }
-                for (u, k) in right.iter_mut().zip(row) {
-                    *u += k * dp;
-                }
+        let kernel = &self.kernel;
+        let rows_of = |first: usize, u_rows: &mut [f64]| {
+            for &(j, dp) in changes {
+                add_column(kernel, (nx, ny), j, dp, first, u_rows);
             }
+        };
+        if nx * ny >= PARALLEL_ELEMENTS {
+            use rayon::prelude::*;
+            let rows = ny.div_ceil(rayon::current_num_threads().max(1));
+            displacement
+                .par_chunks_mut(rows * nx)
+                .enumerate()
+                .with_max_len(1)
+                .for_each(|(k, u_rows)| rows_of(k * rows, u_rows));
+        } else {
+            rows_of(0, displacement);
         }
     }
 
@@ -168,6 +171,37 @@ impl InfluenceOperator for FftInfluence {
         rows: std::ops::Range<usize>,
     ) {
         self.conv.apply_rows(&self.inverse, residual, out, rows);
+    }
+}
+
+/// Grids with at least this many elements split [`FftInfluence::add_columns`] over the rayon
+/// threads.
+const PARALLEL_ELEMENTS: usize = 128 * 128;
+
+/// `u_rows += dp · A e_j` on the grid rows `first ..` held by `u_rows`, with A's circulant
+/// kernel table on the `2nx × 2ny` embedding.
+fn add_column(
+    kernel: &[f64],
+    (nx, ny): (usize, usize),
+    j: usize,
+    dp: f64,
+    first: usize,
+    u_rows: &mut [f64],
+) {
+    let (mx, my) = (2 * nx, 2 * ny);
+    let (jx, jy) = (j % nx, j / nx);
+    for (r, u_row) in u_rows.chunks_mut(nx).enumerate() {
+        let iy = first + r;
+        let dj = (iy + my - jy) % my;
+        let row = &kernel[dj * mx..(dj + 1) * mx];
+        // Offsets ix − jx < 0 wrap to the end of the circulant row.
+        let (left, right) = u_row.split_at_mut(jx);
+        for (u, k) in left.iter_mut().zip(&row[mx - jx..]) {
+            *u += k * dp;
+        }
+        for (u, k) in right.iter_mut().zip(row) {
+            *u += k * dp;
+        }
     }
 }
 
