@@ -100,7 +100,7 @@ pub fn run(case: &Case) -> Outcome {
     let stderr = String::from_utf8_lossy(&output.stderr);
     if output.status.code() == Some(3) {
         return Outcome::Skipped(format!(
-            "tamaas is not installed for `{python}` ({}; `pip install tamaas` to compare, not a dependency)",
+            "tamaas (or numpy) is not importable by `{python}` ({}; `pip install tamaas` to compare, not a dependency)",
             stderr.trim()
         ));
     }
