@@ -8,6 +8,8 @@
 mod ball_drop_cli;
 mod ball_drop_summary;
 mod bench;
+mod bench_small_grids;
+mod bench_tamaas;
 mod bench_tangential;
 mod bench_track;
 mod contact_case;

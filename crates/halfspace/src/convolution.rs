@@ -5,11 +5,16 @@
 //! zero-padding p makes the circular FFT convolution exact (the DC-FFT idea, Liu, Wang & Liu
 //! 2000; CONTACT does the same, references.md §C3.3):
 //!
-//! 1. real-to-complex FFT of each of the `ny` non-zero padded rows (length 2nx);
+//! 1. real-to-complex FFT of each of the `ny` non-zero padded rows (length 2nx); an input
+//!    row that is zero (outside NormCG's contact set) is skipped, its spectrum is zero;
 //! 2. complex FFT of each of the `nx + 1` spectral columns (length 2ny);
 //! 3. multiplication by the cached kernel spectrum (scaled by 1/(4 nx ny));
-//! 4. the inverse transforms, computing only the `ny` output rows that are kept.
+//! 4. the inverse transforms, computing only the `ny` output rows that are kept, or a band
+//!    of them ([`FftConvolution::apply_rows`]: NormCG's preconditioner, needed on the rows
+//!    of the contact set only).
 //!
+//! Both skips leave every computed value unchanged bit for bit (each row transform is
+//! independent of the others).
 //! [`FftConvolution`] owns the plans and every buffer; [`FftConvolution::apply`] does not
 //! allocate. Rows and columns are transformed in parallel with rayon on large grids, each
 //! task with its own preallocated scratch.
@@ -87,6 +92,8 @@ pub struct FftConvolution {
     columns2: Vec<Complex64>,
     row_scratch: Vec<Complex64>,
     col_scratch: Vec<Complex64>,
+    /// Whether each input row of the last forward pass held a non-zero value.
+    row_used: Vec<bool>,
     tasks: usize,
     row_scratch_len: usize,
     col_scratch_len: usize,
@@ -138,6 +145,7 @@ impl FftConvolution {
             columns2: Vec::new(),
             row_scratch: vec![Complex64::default(); tasks * row_scratch_len],
             col_scratch: vec![Complex64::default(); tasks * col_scratch_len],
+            row_used: vec![false; ny],
             tasks,
             row_scratch_len,
             col_scratch_len,
@@ -184,7 +192,27 @@ impl FftConvolution {
     /// `output = K * input` (linear, non-periodic convolution on the grid) for the kernel
     /// whose spectrum is given. `input` and `output` have `nx·ny` values. No allocation.
     pub fn apply(&mut self, spectrum: &KernelSpectrum, input: &[f64], output: &mut [f64]) {
+        let ny = self.ny;
+        self.apply_rows(spectrum, input, output, 0..ny);
+    }
+
+    /// [`Self::apply`] computing only the output rows `rows` (row iy holds the elements
+    /// `iy·nx .. (iy + 1)·nx`); the other rows of `output` are set to zero. Every computed
+    /// value equals that of [`Self::apply`] bit for bit: the rows skipped are those of the
+    /// last (inverse) row transforms, each of which is independent of the others.
+    /// Panics if `rows` does not lie within `0..ny`.
+    pub fn apply_rows(
+        &mut self,
+        spectrum: &KernelSpectrum,
+        input: &[f64],
+        output: &mut [f64],
+        rows: std::ops::Range<usize>,
+    ) {
         let (nx, my, kx) = (self.nx, self.my, self.kx);
+        assert!(
+            rows.start <= rows.end && rows.end <= self.ny,
+            "output rows within the grid"
+        );
         assert_eq!(input.len(), nx * self.ny);
         assert_eq!(output.len(), nx * self.ny);
         assert_eq!(spectrum.values.len(), kx * my);
@@ -206,7 +234,7 @@ impl FftConvolution {
                 }
                 inv.process_with_scratch(cols, scratch);
             });
-        self.columns_to_rows(&columns, output);
+        self.columns_to_rows(&columns, output, rows);
         self.columns = columns;
     }
 
@@ -255,41 +283,58 @@ impl FftConvolution {
                 inv.process_with_scratch(ca, scratch);
                 inv.process_with_scratch(cb, scratch);
             });
-        self.columns_to_rows(&a, out_x);
-        self.columns_to_rows(&b, out_y);
+        let ny = self.ny;
+        self.columns_to_rows(&a, out_x, 0..ny);
+        self.columns_to_rows(&b, out_y, 0..ny);
         self.columns = a;
         self.columns2 = b;
     }
 
     /// Steps 1–2 of the module documentation: pad and transform the rows of `input`, scatter
-    /// the row spectra into `columns` (zero rows ny..2ny are the padding).
+    /// the row spectra into `columns` (zero rows ny..2ny are the padding). An input row that
+    /// is zero (e.g. outside the contact set) is not transformed (its spectrum is zero), and
+    /// only the band of rows between the first and the last non-zero one is scattered.
     fn rows_to_columns(&mut self, input: &[f64], columns: &mut [Complex64]) {
         let (nx, mx, my, kx) = (self.nx, self.mx, self.my, self.kx);
         let rows_per_task = self.ny.div_ceil(self.tasks);
-        // 1. Pad and transform the rows.
+        // 1. Pad and transform the non-zero rows.
         let r2c = &self.r2c;
         self.rows
             .par_chunks_mut(rows_per_task * mx)
             .zip(self.row_spectra.par_chunks_mut(rows_per_task * kx))
             .zip(input.par_chunks(rows_per_task * nx))
             .zip(self.row_scratch.par_chunks_mut(self.row_scratch_len))
+            .zip(self.row_used.par_chunks_mut(rows_per_task))
             .with_max_len(1)
-            .for_each(|(((rows, specs), inp), scratch)| {
-                for ((row, spec), src) in rows
+            .for_each(|((((rows, specs), inp), scratch), used)| {
+                for (((row, spec), src), used) in rows
                     .chunks_mut(mx)
                     .zip(specs.chunks_mut(kx))
                     .zip(inp.chunks(nx))
+                    .zip(used.iter_mut())
                 {
+                    *used = src.iter().any(|&x| x != 0.0);
+                    if !*used {
+                        continue;
+                    }
                     row[..nx].copy_from_slice(src);
                     row[nx..].fill(0.0);
                     r2c.process_with_scratch(row, spec, scratch)
                         .expect("buffer lengths are set from the plan");
                 }
             });
+        let lo = self.row_used.iter().position(|&u| u).unwrap_or(0);
+        let hi = self.row_used.iter().rposition(|&u| u).map_or(0, |j| j + 1);
+        // Zero rows inside the band: their spectra are zero.
+        for j in lo..hi {
+            if !self.row_used[j] {
+                self.row_spectra[j * kx..(j + 1) * kx].fill(Complex64::default());
+            }
+        }
 
-        // 2. Scatter row spectra into columns (zero rows ny..2ny are the padding). A tiled
+        // 2. Scatter row spectra lo..hi into columns (all other entries are zero). A tiled
         //    transpose keeps both the strided reads and the writes in cache.
-        let (ny, row_spectra) = (self.ny, &self.row_spectra);
+        let row_spectra = &self.row_spectra;
         let cols_per_task = kx.div_ceil(self.tasks);
         columns
             .par_chunks_mut(cols_per_task * my)
@@ -298,8 +343,8 @@ impl FftConvolution {
             .for_each(|(task, cols)| {
                 let first = task * cols_per_task;
                 let count = cols.len() / my;
-                for j0 in (0..ny).step_by(TILE) {
-                    let j1 = (j0 + TILE).min(ny);
+                for j0 in (lo..hi).step_by(TILE) {
+                    let j1 = (j0 + TILE).min(hi);
                     for c in 0..count {
                         let k = first + c;
                         let col = &mut cols[c * my + j0..c * my + j1];
@@ -313,23 +358,36 @@ impl FftConvolution {
                     }
                 }
                 for col in cols.chunks_mut(my) {
-                    col[ny..].fill(Complex64::default());
+                    col[..lo].fill(Complex64::default());
+                    col[hi.max(lo)..].fill(Complex64::default());
                 }
             });
     }
 
-    /// Step 4 of the module documentation: gather the kept rows of `columns` (after the
-    /// inverse column transforms) and transform them back into `output`.
-    fn columns_to_rows(&mut self, columns: &[Complex64], output: &mut [f64]) {
+    /// Step 4 of the module documentation: gather the output rows `rows` of `columns` (after
+    /// the inverse column transforms) and transform them back into `output`; the other rows
+    /// of `output` are set to zero.
+    fn columns_to_rows(
+        &mut self,
+        columns: &[Complex64],
+        output: &mut [f64],
+        rows: std::ops::Range<usize>,
+    ) {
         let (nx, mx, my, kx) = (self.nx, self.mx, self.my, self.kx);
-        let rows_per_task = self.ny.div_ceil(self.tasks);
+        let (lo, hi) = (rows.start, rows.end);
+        output[..lo * nx].fill(0.0);
+        output[hi * nx..].fill(0.0);
+        if hi == lo {
+            return;
+        }
+        let rows_per_task = (hi - lo).div_ceil(self.tasks);
         // 4. Gather the kept rows (tiled transpose) and transform them back.
-        self.row_spectra
+        self.row_spectra[lo * kx..hi * kx]
             .par_chunks_mut(rows_per_task * kx)
             .enumerate()
             .with_max_len(1)
             .for_each(|(task, specs)| {
-                let first = task * rows_per_task;
+                let first = lo + task * rows_per_task;
                 let count = specs.len() / kx;
                 for k0 in (0..kx).step_by(TILE) {
                     let k1 = (k0 + TILE).min(kx);
@@ -346,10 +404,10 @@ impl FftConvolution {
                 }
             });
         let c2r = &self.c2r;
-        self.row_spectra
+        self.row_spectra[lo * kx..hi * kx]
             .par_chunks_mut(rows_per_task * kx)
-            .zip(self.rows.par_chunks_mut(rows_per_task * mx))
-            .zip(output.par_chunks_mut(rows_per_task * nx))
+            .zip(self.rows[lo * mx..hi * mx].par_chunks_mut(rows_per_task * mx))
+            .zip(output[lo * nx..hi * nx].par_chunks_mut(rows_per_task * nx))
             .zip(self.row_scratch.par_chunks_mut(self.row_scratch_len))
             .with_max_len(1)
             .for_each(|(((specs, rows), out), scratch)| {

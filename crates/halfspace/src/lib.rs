@@ -69,8 +69,9 @@ pub use linear_theory::{CreepCoefficients, creep_coefficients, linear_forces};
 pub use material::{Body, Material};
 pub use normcg::{NormalLoad, NormalSolver, SolverOptions};
 pub use operator::{
-    DirectInfluence, DirectTangentialInfluence, FftInfluence, FftTangentialInfluence,
-    InfluenceOperator, TangentialInfluenceOperator, TangentialKernel,
+    DenseInfluence, DirectInfluence, DirectTangentialInfluence, FftInfluence,
+    FftTangentialInfluence, InfluenceOperator, NormalInfluence, TangentialInfluenceOperator,
+    TangentialKernel,
 };
 pub use solution::NormalSolution;
 pub use strategy::{TangentialMethod, TangentialStrategy, tangential_strategy};

@@ -4,8 +4,9 @@
 
 use halfspace::operator::Update;
 use halfspace::{
-    Body, DirectInfluence, DirectTangentialInfluence, FftInfluence, FftTangentialInfluence, Grid,
-    InfluenceOperator, Material, TangentialInfluenceOperator, TangentialKernel,
+    Body, DenseInfluence, DirectInfluence, DirectTangentialInfluence, FftInfluence,
+    FftTangentialInfluence, Grid, InfluenceOperator, Material, TangentialInfluenceOperator,
+    TangentialKernel,
 };
 use proptest::prelude::*;
 
@@ -43,6 +44,107 @@ proptest! {
         for (a, b) in fast.iter().zip(&slow) {
             prop_assert!((a - b).abs() <= 1e-12 * scale, "{nx}x{ny}: {a} vs {b}");
         }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// The fast paths for inputs with zero rows (not transformed) and for a band of output
+    /// rows (`precondition_rows`: only those rows transformed back), as NormCG uses them: the
+    /// product with zero rows against the direct sum (1e-12 of max |u|, as above); the
+    /// banded preconditioner equal bit for bit to the full one on the band, zero elsewhere.
+    #[test]
+    fn fft_fast_paths_for_zero_rows_and_output_bands(
+        nx in 1usize..14,
+        ny in 1usize..14,
+        dx in 1e-6f64..1e-3,
+        g in 1e6f64..1e11,
+        zero_rows in any::<u16>(),
+        band in (0usize..14, 0usize..14),
+        seed in any::<u64>(),
+    ) {
+        let grid = Grid::new(nx, ny, dx, 1.3 * dx, 0.0, 0.0).unwrap();
+        let material = Material::from_combined(g, 0.3).unwrap();
+        let mut state = seed | 1;
+        let pressure: Vec<f64> = (0..grid.len())
+            .map(|k| {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                // Rows whose bit is set in `zero_rows` are zero.
+                if zero_rows >> (k / nx) & 1 == 1 {
+                    0.0
+                } else {
+                    1e8 * (state >> 11) as f64 / (1u64 << 53) as f64
+                }
+            })
+            .collect();
+        let mut fft = FftInfluence::new(grid, &material).unwrap();
+        let mut fast = vec![0.0; grid.len()];
+        fft.apply(&pressure, &mut fast);
+        let mut slow = vec![0.0; grid.len()];
+        DirectInfluence::new(grid, material).unwrap().apply(&pressure, &mut slow);
+        let scale = slow.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (a, b) in fast.iter().zip(&slow) {
+            prop_assert!((a - b).abs() <= 1e-12 * scale, "{nx}x{ny}: {a} vs {b}");
+        }
+        let (lo, hi) = (band.0.min(band.1).min(ny), band.0.max(band.1).min(ny));
+        let mut full = vec![0.0; grid.len()];
+        fft.precondition(&pressure, &mut full);
+        let mut banded = vec![1.0; grid.len()];
+        fft.precondition_rows(&pressure, &mut banded, lo..hi);
+        for (k, (a, b)) in banded.iter().zip(&full).enumerate() {
+            let expected = if (lo..hi).contains(&(k / nx)) { *b } else { 0.0 };
+            prop_assert!(a.to_bits() == expected.to_bits(), "element {k}: {a} vs {expected}");
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    /// The dense sums ([`DenseInfluence`]) against the FFT operator: the product (same
+    /// kernel table; 1e-12 of max |u|, the FFT's round-off) and the preconditioner (the FFT
+    /// one tabulated as its impulse response; 1e-12 of max |z|) on inputs with some zero
+    /// values, and the product against the direct sum of Love's formula.
+    #[test]
+    fn dense_sums_equal_fft_and_direct(
+        nx in 1usize..14,
+        ny in 1usize..14,
+        dx in 1e-6f64..1e-3,
+        aspect in 0.2f64..5.0,
+        g in 1e6f64..1e11,
+        nu in -0.5f64..0.49,
+        sparsity in 0u64..4,
+        seed in any::<u64>(),
+    ) {
+        let grid = Grid::new(nx, ny, dx, dx * aspect, 0.2 * dx, -0.4 * dx).unwrap();
+        let material = Material::from_combined(g, nu).unwrap();
+        let mut state = seed | 1;
+        let input: Vec<f64> = (0..grid.len())
+            .map(|_| {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                if state % 4 < sparsity { 0.0 } else { 1e8 * (state >> 11) as f64 / (1u64 << 53) as f64 }
+            })
+            .collect();
+        let mut fft = FftInfluence::new(grid, &material).unwrap();
+        let mut dense = DenseInfluence::new(grid, &material).unwrap();
+        let close = |a: &[f64], b: &[f64]| {
+            let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            a.iter().zip(b).all(|(x, y)| (x - y).abs() <= 1e-12 * scale)
+        };
+        let (mut a, mut b) = (vec![0.0; grid.len()], vec![0.0; grid.len()]);
+        fft.apply(&input, &mut a);
+        dense.apply(&input, &mut b);
+        prop_assert!(close(&b, &a), "product {nx}x{ny}");
+        DirectInfluence::new(grid, material).unwrap().apply(&input, &mut a);
+        prop_assert!(close(&b, &a), "product against the direct sum {nx}x{ny}");
+        fft.precondition(&input, &mut a);
+        dense.precondition(&input, &mut b);
+        prop_assert!(close(&b, &a), "preconditioner {nx}x{ny}");
     }
 }
 

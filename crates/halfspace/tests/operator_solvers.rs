@@ -68,7 +68,7 @@ fn normcg_over_direct_operator_equals_fft_solve() {
         ),
         (line, &line_gap, vec![NormalLoad::Force(1e3)]),
     ] {
-        let mut fast = NormalSolver::new(grid, m).unwrap();
+        let mut fast = NormalSolver::with_operator(FftInfluence::new(grid, &m).unwrap()).unwrap();
         let mut slow = NormalSolver::with_operator(DirectInfluence::new(grid, m).unwrap()).unwrap();
         for load in loads {
             // Twice: a cold start and a warm start from the previous solution.
@@ -81,6 +81,51 @@ fn normcg_over_direct_operator_equals_fft_solve() {
         }
         assert_eq!(fast.convolutions(), slow.convolutions());
     }
+}
+
+/// The two paths of the default operator ([`NormalInfluence`]: FFT, or on small grids the
+/// dense sums for sparse inputs) and the dense operator alone give the FFT operator's
+/// solutions: a small Hertz patch on 12 × 12 (contact set of ~20 elements: every product
+/// dense), a patch over most of a 20 × 16 grid (FFT once the set has grown) and a 40 × 40
+/// grid. The dense preconditioner is the FFT one tabulated (its impulse response), equal to
+/// round-off, so the iterates agree to round-off: tolerance 1e-12 as above.
+#[test]
+fn normcg_over_dense_sums_equals_fft_solve() {
+    let m = Material::identical(210e9, 0.3).unwrap();
+    let shape = GapShape::Quadratic { a: 50.0, b: 50.0 };
+    let options = SolverOptions::default();
+    let mut used_dense = 0;
+    for (n, ny, half_width) in [(12, 12, 4e-4), (20, 16, 1.2e-4), (40, 40, 3e-4)] {
+        let grid = Grid::centred(
+            n,
+            ny,
+            2.0 * half_width / n as f64,
+            2.0 * half_width / ny as f64,
+            0.0,
+            0.0,
+        )
+        .unwrap();
+        let gap = shape.sample(&grid).unwrap();
+        let mut fft = NormalSolver::with_operator(FftInfluence::new(grid, &m).unwrap()).unwrap();
+        let mut dense =
+            NormalSolver::with_operator(DenseInfluence::new(grid, &m).unwrap()).unwrap();
+        let mut auto = NormalSolver::new(grid, m).unwrap();
+        for load in [NormalLoad::Force(20.0), NormalLoad::Approach(1e-6)] {
+            let f = fft.solve(&gap, load, &options).unwrap();
+            assert!(
+                f.elements_in_contact > 3 && f.converged,
+                "{n}x{ny} {load:?}"
+            );
+            compare_normal(&dense.solve(&gap, load, &options).unwrap(), &f);
+            compare_normal(&auto.solve(&gap, load, &options).unwrap(), &f);
+        }
+        used_dense += auto.operator().dense_products();
+        if n == 12 {
+            // Every product of the small patch is dense.
+            assert_eq!(auto.operator().dense_products(), auto.convolutions());
+        }
+    }
+    assert!(used_dense > 0);
 }
 
 fn compare_tangential(fast: &TangentialSolution, slow: &TangentialSolution) {

@@ -103,22 +103,15 @@ pub(super) fn mask(x: &mut [f64], active: &[bool]) {
     }
 }
 
-pub(super) fn remove_active_mean(x: &mut [f64], active: &[bool]) {
-    let (mut s, mut c) = (0.0, 0usize);
-    for (v, &a) in x.iter().zip(active) {
-        if a {
-            s += v;
-            c += 1;
-        }
-    }
-    if c == 0 {
+/// Subtract the mean over the elements of `list` from those elements.
+pub(super) fn remove_list_mean(x: &mut [f64], list: &[usize]) {
+    if list.is_empty() {
         return;
     }
-    let mean = s / c as f64;
-    for (v, &a) in x.iter_mut().zip(active) {
-        if a {
-            *v -= mean;
-        }
+    let s: f64 = list.iter().map(|&i| x[i]).sum();
+    let mean = s / list.len() as f64;
+    for &i in list {
+        x[i] -= mean;
     }
 }
 
@@ -135,10 +128,12 @@ pub(super) fn mean_over(p: &[f64], gap: &[f64], u: &[f64], select: impl Fn(f64) 
     if c == 0 { 0.0 } else { s / c as f64 }
 }
 
-pub(super) fn active_mean(active: &[bool], gap: &[f64], u: &[f64]) -> f64 {
+/// [`mean_over`] for p > 0 with the loaded elements among those of `list` (p = 0 outside
+/// the contact set).
+pub(super) fn list_mean_loaded(list: &[usize], p: &[f64], gap: &[f64], u: &[f64]) -> f64 {
     let (mut s, mut c) = (0.0, 0usize);
-    for i in 0..active.len() {
-        if active[i] {
+    for &i in list {
+        if p[i] > 0.0 && gap[i].is_finite() {
             s += gap[i] + u[i];
             c += 1;
         }
@@ -146,12 +141,29 @@ pub(super) fn active_mean(active: &[bool], gap: &[f64], u: &[f64]) -> f64 {
     if c == 0 { 0.0 } else { s / c as f64 }
 }
 
-/// Scale p to the target sum; returns the factor (1 when p is zero).
-pub(super) fn rescale(p: &mut [f64], target_sum: f64) -> f64 {
-    let s: f64 = p.iter().sum();
+/// Mean of h + u over the elements of `list`.
+pub(super) fn list_mean(list: &[usize], gap: &[f64], u: &[f64]) -> f64 {
+    if list.is_empty() {
+        return 0.0;
+    }
+    let s: f64 = list.iter().map(|&i| gap[i] + u[i]).sum();
+    s / list.len() as f64
+}
+
+/// The grid rows holding the elements of `list` (ascending), as a range of row indices.
+pub(super) fn contact_rows(list: &[usize], nx: usize) -> std::ops::Range<usize> {
+    match (list.first(), list.last()) {
+        (Some(&a), Some(&b)) => a / nx..b / nx + 1,
+        _ => 0..0,
+    }
+}
+
+/// Scale p (zero outside `list`) to the target sum; returns the factor (1 when p is zero).
+pub(super) fn rescale(p: &mut [f64], list: &[usize], target_sum: f64) -> f64 {
+    let s: f64 = list.iter().map(|&i| p[i]).sum();
     if s > 0.0 {
         let f = target_sum / s;
-        p.iter_mut().for_each(|v| *v *= f);
+        list.iter().for_each(|&i| p[i] *= f);
         f
     } else {
         1.0

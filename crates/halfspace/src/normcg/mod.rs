@@ -19,6 +19,16 @@
 //! 4. projection: elements with p < 0 leave C (p = 0); elements outside C with e < 0
 //!    enter C. After a projection u = A p is recomputed exactly.
 //!
+//! **Passes over memory.** Steps 1–3 and the update of p run over the elements of C only
+//! (kept as an ascending index list); r and v are zero outside C, so the convolutions skip
+//! their zero rows, and the preconditioned residual is transformed back on the rows of C
+//! only ([`InfluenceOperator::precondition_rows`]). One pass over the whole grid per
+//! iteration remains (`scan`): u ← u + α q outside C fused with the projection, split over
+//! the rayon threads on large grids without any sum over the parts, so the result does not
+//! depend on the number of threads. All sums run over C in ascending order, as the
+//! whole-grid sums they replace (whose other terms are zero): the iterates are those of the
+//! plain implementation.
+//!
 //! With a prescribed total force F the approach δ is a Lagrange multiplier for
 //! ΔA Σ p = F. It is handled by deflation of the constant: δ = mean_C(h + u) makes the
 //! residual mean-free, z and v are made mean-free on C so that the force is conserved by
@@ -36,7 +46,8 @@
 //! small change of δ, i.e. the one-sided derivative of the discrete problem.
 //!
 //! **Operator.** Every product with A, the sparse column updates and the preconditioner go
-//! through [`InfluenceOperator`]: [`NormalSolver::new`] uses [`FftInfluence`],
+//! through [`InfluenceOperator`]: [`NormalSolver::new`] uses [`NormalInfluence`] (the FFT
+//! operator [`crate::FftInfluence`], with dense sums for sparse inputs on small grids),
 //! [`NormalSolver::with_operator`] any implementation (e.g. the direct O(n²) oracle
 //! [`crate::DirectInfluence`]).
 
@@ -46,9 +57,12 @@ mod sensitivity;
 use crate::error::{ContactError, positive};
 use crate::grid::Grid;
 use crate::material::Material;
-use crate::operator::{FftInfluence, InfluenceOperator};
+use crate::operator::{InfluenceOperator, NormalInfluence};
 use crate::solution::NormalSolution;
-use active_set::{active_mean, initial_force_guess, mask, mean_over, remove_active_mean, rescale};
+use active_set::{
+    contact_rows, initial_force_guess, list_mean, list_mean_loaded, mean_over, remove_list_mean,
+    rescale,
+};
 
 /// The normal load: approach or total force prescribed.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -103,6 +117,10 @@ impl SolverOptions {
     }
 }
 
+/// Grids with at least this many elements split [`NormalSolver::scan`] over the rayon
+/// threads (the FFT convolution's threshold).
+const PARALLEL_THRESHOLD: usize = 128 * 128;
+
 /// Work vectors of one solve, allocated once per solver.
 #[derive(Debug)]
 struct Workspace {
@@ -116,6 +134,10 @@ struct Workspace {
     active: Vec<bool>,
     /// Elements clipped to p = 0 in the last update, with the pressure added to them.
     clipped: Vec<(usize, f64)>,
+    /// The elements of the contact set, ascending (`active` as a list).
+    list: Vec<usize>,
+    /// The parts of the next `list`, one per part of the grid in [`NormalSolver::scan`].
+    parts: Vec<Vec<usize>>,
 }
 
 impl Workspace {
@@ -130,6 +152,16 @@ impl Workspace {
             q: vec![0.0; n],
             active: vec![false; n],
             clipped: Vec::with_capacity(n),
+            list: Vec::with_capacity(n),
+            parts: {
+                let count = if n >= PARALLEL_THRESHOLD {
+                    rayon::current_num_threads().max(1)
+                } else {
+                    1
+                };
+                let chunk = n.div_ceil(count).max(1);
+                (0..count).map(|_| Vec::with_capacity(chunk)).collect()
+            },
         }
     }
 }
@@ -146,13 +178,14 @@ enum WarmStart {
 }
 
 /// Solver of the normal contact problem on one grid and material pair, generic over the
-/// influence operator `A` (default: the FFT convolution [`FftInfluence`]).
+/// influence operator `A` (default: [`NormalInfluence`], the FFT convolution with dense sums
+/// for sparse inputs on small grids).
 ///
 /// Owns the operator (for the FFT one: plans and the spectra of A_nn and of the
 /// preconditioner, computed once) and all work vectors; repeated solves (time stepping)
 /// allocate only their result, and start from the previous pressure when `warm_start` is set.
 #[derive(Debug)]
-pub struct NormalSolver<A: InfluenceOperator = FftInfluence> {
+pub struct NormalSolver<A: InfluenceOperator = NormalInfluence> {
     operator: A,
     work: Workspace,
     /// What the workspace holds for a warm start.
@@ -162,9 +195,10 @@ pub struct NormalSolver<A: InfluenceOperator = FftInfluence> {
 }
 
 impl NormalSolver {
-    /// Tabulate the influence kernel, plan the FFTs and build the preconditioner.
+    /// Tabulate the influence kernel, plan the FFTs and build the preconditioner
+    /// ([`NormalInfluence`]).
     pub fn new(grid: Grid, material: Material) -> Result<Self, ContactError> {
-        Self::with_operator(FftInfluence::new(grid, &material)?)
+        Self::with_operator(NormalInfluence::new(grid, &material)?)
     }
 }
 
@@ -346,14 +380,21 @@ impl<A: InfluenceOperator> NormalSolver<A> {
             NormalLoad::Approach(d) => d,
             NormalLoad::Force(_) => mean_over(&self.work.p, gap, &self.work.u, |p| p > 0.0),
         };
-        // Initial contact set: loaded elements and penetrating ones.
+        // Initial contact set: loaded elements and penetrating ones. r and v are kept zero
+        // outside the set (the inputs of the convolutions: zero rows are not transformed).
         {
             let w = &mut self.work;
+            w.r.fill(0.0);
+            w.v.fill(0.0);
+            w.list.clear();
             for i in 0..n {
                 w.active[i] = w.p[i] > 0.0 || gap[i] - approach + w.u[i] < 0.0;
+                if w.active[i] {
+                    w.list.push(i);
+                }
             }
         }
-        if !self.work.active.iter().any(|&a| a) {
+        if self.work.list.is_empty() {
             return Ok(NormalSolution::empty(grid, gap, approach));
         }
 
@@ -362,100 +403,107 @@ impl<A: InfluenceOperator> NormalSolver<A> {
         let mut change = f64::INFINITY;
         for iteration in 1..=options.max_iter {
             if force_mode {
-                approach = active_mean(&self.work.active, gap, &self.work.u);
+                approach = list_mean(&self.work.list, gap, &self.work.u);
             }
-            // 1. residual and preconditioned residual on C.
-            {
-                let w = &mut self.work;
-                for (((r, &a), &h), &u) in w.r.iter_mut().zip(&w.active).zip(gap).zip(&w.u) {
-                    *r = if a { approach - h - u } else { 0.0 };
-                }
+            // 1. residual and preconditioned residual on C (the rows of C only).
+            let w = &mut self.work;
+            for &i in &w.list {
+                w.r[i] = approach - gap[i] - w.u[i];
             }
-            self.operator.precondition(&self.work.r, &mut self.work.z);
+            let rows = contact_rows(&w.list, grid.nx);
+            self.operator
+                .precondition_rows(&self.work.r, &mut self.work.z, rows);
             self.convolutions += 1;
             let w = &mut self.work;
-            mask(&mut w.z, &w.active);
             if force_mode {
-                remove_active_mean(&mut w.z, &w.active);
+                remove_list_mean(&mut w.z, &w.list);
             }
-            // 2. Polak–Ribière direction (zᵀr and zᵀr_prev in one pass).
+            // 2. Polak–Ribière direction (zᵀr and zᵀr_prev in one pass; z is read on C only).
             let (mut rz, mut rz_old) = (0.0, 0.0);
-            for ((&r, &z), &rp) in w.r.iter().zip(&w.z).zip(&w.r_prev) {
-                rz += r * z;
-                rz_old += z * rp;
+            for &i in &w.list {
+                rz += w.r[i] * w.z[i];
+                rz_old += w.z[i] * w.r_prev[i];
             }
             let beta = if restart || rz_prev <= 0.0 {
                 0.0
             } else {
                 ((rz - rz_old) / rz_prev).max(0.0)
             };
-            for ((v, &z), &a) in w.v.iter_mut().zip(&w.z).zip(&w.active) {
-                *v = if a { z + beta * *v } else { 0.0 };
+            for &i in &w.list {
+                w.v[i] = w.z[i] + beta * w.v[i];
+                w.r_prev[i] = w.r[i];
             }
-            w.r_prev.copy_from_slice(&w.r);
             rz_prev = rz;
             // 3. step along v.
             self.operator.apply(&self.work.v, &mut self.work.q);
             self.convolutions += 1;
             let w = &mut self.work;
             let (mut vq, mut rv) = (0.0, 0.0);
-            for (((&v, &q), &a), &r) in w.v.iter().zip(&w.q).zip(&w.active).zip(&w.r) {
-                if a {
-                    vq += v * q;
-                }
-                rv += r * v;
+            for &i in &w.list {
+                vq += w.v[i] * w.q[i];
+                rv += w.r[i] * w.v[i];
             }
-            // 4. update, relative change and projection in one pass.
+            // 4. update on C (p, u, relative change, clipping), then u outside C and the
+            //    projection in one pass over the grid ([`Self::scan`]).
             w.clipped.clear();
-            if vq <= 0.0 || rv == 0.0 {
+            let step = if vq <= 0.0 || rv == 0.0 {
                 // No descent possible: the residual vanished (exact solution) or round-off.
                 change = 0.0;
+                None
             } else {
                 let alpha = rv / vq;
                 let (mut dp2, mut p2) = (0.0, 0.0);
-                for (i, (((p, u), &v), &q)) in
-                    w.p.iter_mut()
-                        .zip(w.u.iter_mut())
-                        .zip(&w.v)
-                        .zip(&w.q)
-                        .enumerate()
-                {
-                    let dp = alpha * v;
-                    let updated = *p + dp;
-                    *u += alpha * q;
+                for &i in &w.list {
+                    let dp = alpha * w.v[i];
+                    let updated = w.p[i] + dp;
+                    w.u[i] += alpha * w.q[i];
                     dp2 += dp * dp;
                     p2 += updated * updated;
                     if updated < 0.0 {
                         // Capacity n was reserved: no allocation.
                         w.clipped.push((i, -updated));
                     }
-                    *p = updated.max(0.0);
+                    w.p[i] = updated.max(0.0);
                 }
                 change = if p2 > 0.0 {
                     (dp2 / p2).sqrt()
                 } else {
                     f64::INFINITY
                 };
-            }
-            if !self.work.clipped.is_empty() {
+                Some(alpha)
+            };
+            let changed = if self.work.clipped.is_empty() {
+                if force_mode {
+                    approach = list_mean_loaded(&self.work.list, &self.work.p, gap, &self.work.u);
+                }
+                self.scan(gap, approach, step)
+            } else {
+                if let Some(alpha) = step {
+                    let w = &mut self.work;
+                    for ((u, &q), &a) in w.u.iter_mut().zip(&w.q).zip(&w.active) {
+                        if !a {
+                            *u += alpha * q;
+                        }
+                    }
+                }
                 self.correct_for_clipping();
                 if let Some(sum) = target_sum {
-                    let scale = rescale(&mut self.work.p, sum);
+                    let scale = rescale(&mut self.work.p, &self.work.list, sum);
                     self.work.u.iter_mut().for_each(|u| *u *= scale);
                 }
-            }
-            if force_mode {
-                approach = mean_over(&self.work.p, gap, &self.work.u, |p| p > 0.0);
-            }
-            let changed = self.update_active_set(gap, approach);
+                if force_mode {
+                    approach = list_mean_loaded(&self.work.list, &self.work.p, gap, &self.work.u);
+                }
+                self.scan(gap, approach, None)
+            };
             restart = changed;
             if !changed && change <= options.tol {
                 // Confirm on an exactly recomputed displacement.
                 self.exact_displacement();
                 if force_mode {
-                    approach = mean_over(&self.work.p, gap, &self.work.u, |p| p > 0.0);
+                    approach = list_mean_loaded(&self.work.list, &self.work.p, gap, &self.work.u);
                 }
-                if !self.update_active_set(gap, approach) {
+                if !self.scan(gap, approach, None) {
                     return Ok(self.assemble(gap, approach, iteration, change, true));
                 }
                 restart = true;
@@ -491,15 +539,65 @@ impl<A: InfluenceOperator> NormalSolver<A> {
         self.convolutions += 1;
     }
 
-    /// New contact set: elements with p > 0, and elements outside the set that penetrate.
-    /// Returns whether the set changed.
-    fn update_active_set(&mut self, gap: &[f64], approach: f64) -> bool {
+    /// The pass over the grid that closes an iteration: u += α q outside the contact set C
+    /// when `step` is α (on C the update is done already), then the new contact set: the
+    /// elements of C with p > 0, and the elements outside C that penetrate
+    /// (h − δ + u < 0). Keeps `list` (the elements of C, ascending) and r = v = 0 outside C.
+    /// Returns whether the set changed. On large grids the grid is split into one part per
+    /// thread; every element's result is independent of the split (no sums), so the result
+    /// does not depend on the number of threads.
+    fn scan(&mut self, gap: &[f64], approach: f64, step: Option<f64>) -> bool {
         let w = &mut self.work;
-        let mut changed = false;
-        for (((a, &p), &h), &u) in w.active.iter_mut().zip(&w.p).zip(gap).zip(&w.u) {
-            let now = p > 0.0 || (h - approach + u < 0.0 && !*a);
-            changed |= now != *a;
-            *a = now;
+        let chunk = w.active.len().div_ceil(w.parts.len()).max(1);
+        // A part the split leaves empty must not keep the indices of an earlier scan.
+        w.parts.iter_mut().for_each(Vec::clear);
+        let changed = if w.parts.len() == 1 {
+            scan_part(
+                0,
+                ScanPart {
+                    active: &mut w.active,
+                    p: &w.p,
+                    u: &mut w.u,
+                    q: &w.q,
+                    r: &mut w.r,
+                    v: &mut w.v,
+                    gap,
+                    list: &mut w.parts[0],
+                },
+                approach,
+                step,
+            )
+        } else {
+            use rayon::prelude::*;
+            w.active
+                .par_chunks_mut(chunk)
+                .zip(w.p.par_chunks(chunk))
+                .zip(w.u.par_chunks_mut(chunk))
+                .zip(w.q.par_chunks(chunk))
+                .zip(w.r.par_chunks_mut(chunk))
+                .zip(w.v.par_chunks_mut(chunk))
+                .zip(gap.par_chunks(chunk))
+                .zip(w.parts.par_iter_mut())
+                .enumerate()
+                .with_max_len(1)
+                .map(|(k, (((((((active, p), u), q), r), v), gap), list))| {
+                    let part = ScanPart {
+                        active,
+                        p,
+                        u,
+                        q,
+                        r,
+                        v,
+                        gap,
+                        list,
+                    };
+                    scan_part(k * chunk, part, approach, step)
+                })
+                .reduce(|| false, |a, b| a || b)
+        };
+        w.list.clear();
+        for part in &w.parts {
+            w.list.extend_from_slice(part);
         }
         changed
     }
@@ -559,17 +657,79 @@ impl<A: InfluenceOperator> NormalSolver<A> {
     }
 }
 
+/// The slices of one part of the grid for [`NormalSolver::scan`].
+struct ScanPart<'a> {
+    active: &'a mut [bool],
+    p: &'a [f64],
+    u: &'a mut [f64],
+    q: &'a [f64],
+    r: &'a mut [f64],
+    v: &'a mut [f64],
+    gap: &'a [f64],
+    /// Receives the (global) indices of the part's elements in the new contact set.
+    list: &'a mut Vec<usize>,
+}
+
+/// [`NormalSolver::scan`] on the elements `first ..` of one part; returns whether the set
+/// changed there.
+fn scan_part(first: usize, part: ScanPart<'_>, approach: f64, step: Option<f64>) -> bool {
+    let ScanPart {
+        active,
+        p,
+        u,
+        q,
+        r,
+        v,
+        gap,
+        list,
+    } = part;
+    list.clear();
+    let mut changed = false;
+    let alpha = step.unwrap_or(0.0);
+    let with_step = step.is_some();
+    for i in 0..active.len() {
+        let was = active[i];
+        let now = if was {
+            p[i] > 0.0
+        } else {
+            if with_step {
+                u[i] += alpha * q[i];
+            }
+            gap[i] - approach + u[i] < 0.0
+        };
+        if now {
+            // Capacity: the part's length was reserved, no allocation.
+            list.push(first + i);
+        } else if was {
+            r[i] = 0.0;
+            v[i] = 0.0;
+        }
+        changed |= now != was;
+        active[i] = now;
+    }
+    changed
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     /// The sparse clipping correction equals a full recomputation of u = A p (both use the
-    /// same kernel; the direct sum and the FFT agree to round-off, 1e-12 relative).
+    /// same kernel; the direct sum and the FFT agree to round-off, 1e-12 relative), on a small
+    /// grid and on one whose column sums are split over the threads (≥ 128 × 128).
     #[test]
     fn clipping_correction_equals_recomputation() {
-        let grid = Grid::new(7, 5, 1e-4, 1.5e-4, 0.0, 0.0).unwrap();
+        for (nx, ny) in [(7, 5), (130, 129)] {
+            clipping_correction_case(nx, ny);
+        }
+    }
+
+    fn clipping_correction_case(nx: usize, ny: usize) {
+        let grid = Grid::new(nx, ny, 1e-4, 1.5e-4, 0.0, 0.0).unwrap();
         let material = Material::from_combined(8e10, 0.3).unwrap();
-        let mut solver = NormalSolver::new(grid, material).unwrap();
+        let mut solver =
+            NormalSolver::with_operator(crate::FftInfluence::new(grid, &material).unwrap())
+                .unwrap();
         let n = grid.len();
         for i in 0..n {
             solver.work.p[i] = 1e8 * (((i * 37 + 3) % 11) as f64 + 1.0);
@@ -577,7 +737,7 @@ mod tests {
         solver.exact_displacement();
         // Clip three elements (corner, edge, interior) as the projection would.
         solver.work.clipped.clear();
-        for &j in &[0usize, 6, 17] {
+        for &j in &[0usize, nx - 1, n / 2 + 3] {
             let dp = -solver.work.p[j];
             solver.work.p[j] = 0.0;
             solver.work.clipped.push((j, dp));

@@ -6,7 +6,11 @@
 //! of the two elements only, so the product u = A p is a discrete convolution.
 //!
 //! * [`FftInfluence`]: the zero-padded FFT convolution with the tabulated circulant kernel,
-//!   O(n log n) (the default operator of [`crate::NormalSolver`]);
+//!   O(n log n);
+//! * [`DenseInfluence`]: the sums over the non-zero inputs with the same tabulated kernel,
+//!   O(n·m) for m non-zero inputs: faster on small grids with small contact sets;
+//! * [`NormalInfluence`]: the default operator of [`crate::NormalSolver`]: per product the
+//!   FFT or, on small grids and for few non-zero inputs, the dense sums (measured cross-over);
 //! * [`DirectInfluence`]: the O(n²) sum straight from Love's formula; its products use no
 //!   table and no FFT (only its preconditioner is the FFT one, see below): the first-class
 //!   slow oracle (as RustFFT's `Dft` is for its FFTs), for tests and for checking the fast
@@ -24,6 +28,8 @@
 //! up to round-off (both use the same FFT preconditioner, which only steers the iteration),
 //! so the two solutions agree to ~1e-12 (tests/operator_solvers.rs).
 
+pub mod auto;
+pub mod dense;
 pub mod tangential;
 
 use crate::convolution::{FftConvolution, KernelSpectrum};
@@ -32,6 +38,8 @@ use crate::grid::Grid;
 use crate::influence::{circulant_kernel, normal_influence};
 use crate::material::Material;
 
+pub use auto::NormalInfluence;
+pub use dense::DenseInfluence;
 pub use tangential::{
     DirectTangentialInfluence, FftTangentialInfluence, TangentialInfluenceOperator,
     TangentialKernel, Update,
@@ -56,6 +64,22 @@ pub trait InfluenceOperator {
     /// `out = M residual` with M ≈ A⁻¹ symmetric positive definite (NormCG's preconditioner;
     /// it changes the number of iterations, never the solution).
     fn precondition(&mut self, residual: &[f64], out: &mut [f64]);
+
+    /// [`Self::precondition`] where only the grid rows `rows` of `out` are needed (row iy
+    /// holds the elements `iy·nx .. (iy + 1)·nx`; NormCG passes the rows of the contact set):
+    /// those rows equal [`Self::precondition`]'s, the others are set to zero. The default
+    /// computes the whole product.
+    fn precondition_rows(
+        &mut self,
+        residual: &[f64],
+        out: &mut [f64],
+        rows: std::ops::Range<usize>,
+    ) {
+        self.precondition(residual, out);
+        let nx = self.grid().nx;
+        out[..rows.start * nx].fill(0.0);
+        out[rows.end * nx..].fill(0.0);
+    }
 }
 
 /// The FFT implementation (module documentation). Plans, the kernel table and the spectra of
@@ -109,31 +133,75 @@ impl InfluenceOperator for FftInfluence {
         self.conv.apply(&self.spectrum, pressure, displacement);
     }
 
-    /// Reads the columns from the circulant kernel table: contiguous rows, no allocation.
+    /// Reads the columns from the circulant kernel table: contiguous rows, no allocation. On
+    /// large grids the rows are split over the rayon threads; every element receives the
+    /// columns in the order of `changes` whatever the split, so the result does not depend
+    /// on the number of threads.
     fn add_columns(&mut self, changes: &[(usize, f64)], displacement: &mut [f64]) {
         let (nx, ny) = (self.grid.nx, self.grid.ny);
-        let (mx, my) = (2 * nx, 2 * ny);
         assert_eq!(displacement.len(), nx * ny, "one value per element");
-        for &(j, dp) in changes {
-            let (jx, jy) = (j % nx, j / nx);
-            for iy in 0..ny {
-                let dj = (iy + my - jy) % my;
-                let row = &self.kernel[dj * mx..(dj + 1) * mx];
-                let u_row = &mut displacement[iy * nx..(iy + 1) * nx];
-                // Offsets ix − jx < 0 wrap to the end of the circulant row.
-                let (left, right) = u_row.split_at_mut(jx);
-                for (u, k) in left.iter_mut().zip(&row[mx - jx..]) {
-                    *u += k * dp;
-                }
-                for (u, k) in right.iter_mut().zip(row) {
-                    *u += k * dp;
-                }
+        let kernel = &self.kernel;
+        let rows_of = |first: usize, u_rows: &mut [f64]| {
+            for &(j, dp) in changes {
+                add_column(kernel, (nx, ny), j, dp, first, u_rows);
             }
+        };
+        if nx * ny >= PARALLEL_ELEMENTS {
+            use rayon::prelude::*;
+            let rows = ny.div_ceil(rayon::current_num_threads().max(1));
+            displacement
+                .par_chunks_mut(rows * nx)
+                .enumerate()
+                .with_max_len(1)
+                .for_each(|(k, u_rows)| rows_of(k * rows, u_rows));
+        } else {
+            rows_of(0, displacement);
         }
     }
 
     fn precondition(&mut self, residual: &[f64], out: &mut [f64]) {
         self.conv.apply(&self.inverse, residual, out);
+    }
+
+    /// Skips the last (inverse) row transforms of the rows not needed.
+    fn precondition_rows(
+        &mut self,
+        residual: &[f64],
+        out: &mut [f64],
+        rows: std::ops::Range<usize>,
+    ) {
+        self.conv.apply_rows(&self.inverse, residual, out, rows);
+    }
+}
+
+/// Grids with at least this many elements split [`FftInfluence::add_columns`] over the rayon
+/// threads.
+const PARALLEL_ELEMENTS: usize = 128 * 128;
+
+/// `u_rows += dp · A e_j` on the grid rows `first ..` held by `u_rows`, with A's circulant
+/// kernel table on the `2nx × 2ny` embedding.
+fn add_column(
+    kernel: &[f64],
+    (nx, ny): (usize, usize),
+    j: usize,
+    dp: f64,
+    first: usize,
+    u_rows: &mut [f64],
+) {
+    let (mx, my) = (2 * nx, 2 * ny);
+    let (jx, jy) = (j % nx, j / nx);
+    for (r, u_row) in u_rows.chunks_mut(nx).enumerate() {
+        let iy = first + r;
+        let dj = (iy + my - jy) % my;
+        let row = &kernel[dj * mx..(dj + 1) * mx];
+        // Offsets ix − jx < 0 wrap to the end of the circulant row.
+        let (left, right) = u_row.split_at_mut(jx);
+        for (u, k) in left.iter_mut().zip(&row[mx - jx..]) {
+            *u += k * dp;
+        }
+        for (u, k) in right.iter_mut().zip(row) {
+            *u += k * dp;
+        }
     }
 }
 
@@ -204,5 +272,14 @@ impl InfluenceOperator for DirectInfluence {
 
     fn precondition(&mut self, residual: &[f64], out: &mut [f64]) {
         self.preconditioner.precondition(residual, out);
+    }
+
+    fn precondition_rows(
+        &mut self,
+        residual: &[f64],
+        out: &mut [f64],
+        rows: std::ops::Range<usize>,
+    ) {
+        self.preconditioner.precondition_rows(residual, out, rows);
     }
 }
