@@ -387,7 +387,7 @@ use crate::output::plural;
 
 /// The track's model name for the summary.
 fn track_model_name(spec: &TrackSpec) -> String {
-    spec.model.to_string()
+    spec.model.clone()
 }
 
 /// Prints the readable summary.

@@ -373,7 +373,7 @@ fn spec_of(
     supports: TrackSupports,
 ) -> sim::vehicle_bridge::track::TrackSpec {
     sim::vehicle_bridge::track::TrackSpec {
-        model: "ballasted",
+        model: "ballasted".into(),
         rail: RailSection::e60(),
         approach,
         exit: approach,

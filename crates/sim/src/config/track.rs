@@ -56,6 +56,120 @@ pub struct TrackToml {
     pub slab_mass: Option<f64>,
     pub mortar_stiffness: Option<f64>,
     pub mortar_damping: Option<f64>,
+    /// `[track.approach]`: the chain on the approach embankment, if it differs.
+    pub approach: Option<ZoneToml>,
+    /// `[track.bridge]`: the chain on the bridge (e.g. `model = "slab"`: ballastless track on
+    /// the deck), if it differs.
+    pub bridge: Option<ZoneToml>,
+    /// `[track.exit]`: the chain on the exit embankment, if it differs.
+    pub exit: Option<ZoneToml>,
+}
+
+/// `[track.approach]`, `[track.bridge]`, `[track.exit]`: one zone's support chain. With the
+/// model of `[track]` (or no `model`), its keys replace those of `[track]` for this zone;
+/// with another model, the zone's chain is that model with its own keys and defaults.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ZoneToml {
+    /// `ballasted` or `slab` (default: the model of `[track]`).
+    pub model: Option<String>,
+    pub pad_stiffness: Option<f64>,
+    pub pad_damping: Option<f64>,
+    pub sleeper_mass: Option<f64>,
+    pub ballast_stiffness: Option<f64>,
+    pub ballast_damping: Option<f64>,
+    pub ballast_mass: Option<f64>,
+    pub subgrade_stiffness: Option<f64>,
+    pub subgrade_damping: Option<f64>,
+    pub slab_mass: Option<f64>,
+    pub mortar_stiffness: Option<f64>,
+    pub mortar_damping: Option<f64>,
+}
+
+/// The support keys of one chain, whichever table they come from.
+#[derive(Debug, Clone, Copy, Default)]
+struct ChainKeys {
+    pad_stiffness: Option<f64>,
+    pad_damping: Option<f64>,
+    sleeper_mass: Option<f64>,
+    ballast_stiffness: Option<f64>,
+    ballast_damping: Option<f64>,
+    ballast_mass: Option<f64>,
+    subgrade_stiffness: Option<f64>,
+    subgrade_damping: Option<f64>,
+    slab_mass: Option<f64>,
+    mortar_stiffness: Option<f64>,
+    mortar_damping: Option<f64>,
+}
+
+impl ChainKeys {
+    fn of_track(t: &TrackToml) -> Self {
+        Self {
+            pad_stiffness: t.pad_stiffness,
+            pad_damping: t.pad_damping,
+            sleeper_mass: t.sleeper_mass,
+            ballast_stiffness: t.ballast_stiffness,
+            ballast_damping: t.ballast_damping,
+            ballast_mass: t.ballast_mass,
+            subgrade_stiffness: t.subgrade_stiffness,
+            subgrade_damping: t.subgrade_damping,
+            slab_mass: t.slab_mass,
+            mortar_stiffness: t.mortar_stiffness,
+            mortar_damping: t.mortar_damping,
+        }
+    }
+
+    fn of_zone(z: &ZoneToml) -> Self {
+        Self {
+            pad_stiffness: z.pad_stiffness,
+            pad_damping: z.pad_damping,
+            sleeper_mass: z.sleeper_mass,
+            ballast_stiffness: z.ballast_stiffness,
+            ballast_damping: z.ballast_damping,
+            ballast_mass: z.ballast_mass,
+            subgrade_stiffness: z.subgrade_stiffness,
+            subgrade_damping: z.subgrade_damping,
+            slab_mass: z.slab_mass,
+            mortar_stiffness: z.mortar_stiffness,
+            mortar_damping: z.mortar_damping,
+        }
+    }
+
+    /// These keys, each replaced by `over`'s where that one is given.
+    fn overridden_by(self, over: Self) -> Self {
+        Self {
+            pad_stiffness: over.pad_stiffness.or(self.pad_stiffness),
+            pad_damping: over.pad_damping.or(self.pad_damping),
+            sleeper_mass: over.sleeper_mass.or(self.sleeper_mass),
+            ballast_stiffness: over.ballast_stiffness.or(self.ballast_stiffness),
+            ballast_damping: over.ballast_damping.or(self.ballast_damping),
+            ballast_mass: over.ballast_mass.or(self.ballast_mass),
+            subgrade_stiffness: over.subgrade_stiffness.or(self.subgrade_stiffness),
+            subgrade_damping: over.subgrade_damping.or(self.subgrade_damping),
+            slab_mass: over.slab_mass.or(self.slab_mass),
+            mortar_stiffness: over.mortar_stiffness.or(self.mortar_stiffness),
+            mortar_damping: over.mortar_damping.or(self.mortar_damping),
+        }
+    }
+
+    fn ballast_keys(&self) -> [(&'static str, bool); 6] {
+        [
+            ("sleeper_mass", self.sleeper_mass.is_some()),
+            ("ballast_stiffness", self.ballast_stiffness.is_some()),
+            ("ballast_damping", self.ballast_damping.is_some()),
+            ("ballast_mass", self.ballast_mass.is_some()),
+            ("subgrade_stiffness", self.subgrade_stiffness.is_some()),
+            ("subgrade_damping", self.subgrade_damping.is_some()),
+        ]
+    }
+
+    fn slab_keys(&self) -> [(&'static str, bool); 3] {
+        [
+            ("slab_mass", self.slab_mass.is_some()),
+            ("mortar_stiffness", self.mortar_stiffness.is_some()),
+            ("mortar_damping", self.mortar_damping.is_some()),
+        ]
+    }
 }
 
 fn spring(
@@ -70,91 +184,54 @@ fn spring(
     SpringDamper::new(k, c).map_err(|e| invalid!("[track]: {e}"))
 }
 
-/// The `[track]` table: `None` when absent or `model = "none"` (the rail is the beam).
-pub fn track(t: Option<&TrackToml>) -> Result<Option<TrackSpec>, ConfigError> {
-    let Some(t) = t else {
-        return Ok(None);
-    };
-    let model = t.model.trim().to_ascii_lowercase();
-    let given = |keys: &[(&str, bool)]| -> Result<(), ConfigError> {
-        for &(key, present) in keys {
-            if present {
-                bail!(
-                    "[track] `{key}` does not apply to model = \"{}\"",
-                    t.model.trim()
-                );
-            }
-        }
-        Ok(())
-    };
-    let ballast_keys = [
-        ("sleeper_mass", t.sleeper_mass.is_some()),
-        ("ballast_stiffness", t.ballast_stiffness.is_some()),
-        ("ballast_damping", t.ballast_damping.is_some()),
-        ("ballast_mass", t.ballast_mass.is_some()),
-        ("subgrade_stiffness", t.subgrade_stiffness.is_some()),
-        ("subgrade_damping", t.subgrade_damping.is_some()),
-    ];
-    let slab_keys = [
-        ("slab_mass", t.slab_mass.is_some()),
-        ("mortar_stiffness", t.mortar_stiffness.is_some()),
-        ("mortar_damping", t.mortar_damping.is_some()),
-    ];
-    let d = SPACING.check(
-        "track.sleeper_spacing",
-        t.sleeper_spacing.unwrap_or(DEFAULT_SLEEPER_SPACING),
-    )?;
-    let stack = match model.as_str() {
-        "none" => {
-            given(&ballast_keys)?;
-            given(&slab_keys)?;
-            given(&[
-                ("rail", t.rail.is_some()),
-                ("approach_length", t.approach_length.is_some()),
-                ("exit_length", t.exit_length.is_some()),
-                ("sleeper_spacing", t.sleeper_spacing.is_some()),
-                ("elements_per_bay", t.elements_per_bay.is_some()),
-                ("pad_stiffness", t.pad_stiffness.is_some()),
-                ("pad_damping", t.pad_damping.is_some()),
-            ])?;
-            return Ok(None);
-        }
+/// An error if any of `keys` is given: it does not apply to `model` (in table `table`).
+fn refuse(table: &str, model: &str, keys: &[(&str, bool)]) -> Result<(), ConfigError> {
+    if let Some((key, _)) = keys.iter().find(|(_, present)| *present) {
+        bail!("[{table}] `{key}` does not apply to model = \"{model}\"");
+    }
+    Ok(())
+}
+
+/// The support chain of `model` ("ballasted" or "slab") with the keys `k` of table `table`
+/// (`track` or `track.bridge`, …) at sleeper spacing `d`.
+fn chain(table: &str, model: &str, k: &ChainKeys, d: f64) -> Result<SupportStack, ConfigError> {
+    let key = |name: &str| format!("{table}.{name}");
+    let stack = match model {
         "ballasted" => {
-            given(&slab_keys)?;
+            refuse(table, model, &k.slab_keys())?;
             let preset = SupportStack::ballasted_high_speed();
             let (s, m) = (preset.springs(), preset.masses());
             let pad = spring(
-                "track.pad_stiffness",
-                t.pad_stiffness,
-                "track.pad_damping",
-                t.pad_damping,
+                &key("pad_stiffness"),
+                k.pad_stiffness,
+                &key("pad_damping"),
+                k.pad_damping,
                 s[0],
             )?;
-            let sleeper = SUPPORT_MASS.check("track.sleeper_mass", t.sleeper_mass.unwrap_or(m[0]))?;
+            let sleeper =
+                SUPPORT_MASS.check(&key("sleeper_mass"), k.sleeper_mass.unwrap_or(m[0]))?;
             let ballast = spring(
-                "track.ballast_stiffness",
-                t.ballast_stiffness,
-                "track.ballast_damping",
-                t.ballast_damping,
+                &key("ballast_stiffness"),
+                k.ballast_stiffness,
+                &key("ballast_damping"),
+                k.ballast_damping,
                 s[1],
             )?;
-            let ballast_mass = t.ballast_mass.unwrap_or(m[1]);
+            let ballast_mass = k.ballast_mass.unwrap_or(m[1]);
             if ballast_mass == 0.0 {
-                given(&[
-                    ("subgrade_stiffness", t.subgrade_stiffness.is_some()),
-                    ("subgrade_damping", t.subgrade_damping.is_some()),
-                ])
-                .map_err(|_| {
-                    invalid!("[track] `subgrade_stiffness`/`subgrade_damping` need a ballast mass (ballast_mass > 0)")
-                })?;
+                if k.subgrade_stiffness.is_some() || k.subgrade_damping.is_some() {
+                    bail!(
+                        "[{table}] `subgrade_stiffness`/`subgrade_damping` need a ballast mass (ballast_mass > 0)"
+                    );
+                }
                 SupportStack::ballasted(pad, sleeper, ballast)
             } else {
-                let ballast_mass = SUPPORT_MASS.check("track.ballast_mass", ballast_mass)?;
+                let ballast_mass = SUPPORT_MASS.check(&key("ballast_mass"), ballast_mass)?;
                 let subgrade = spring(
-                    "track.subgrade_stiffness",
-                    t.subgrade_stiffness,
-                    "track.subgrade_damping",
-                    t.subgrade_damping,
+                    &key("subgrade_stiffness"),
+                    k.subgrade_stiffness,
+                    &key("subgrade_damping"),
+                    k.subgrade_damping,
                     s[2],
                 )?;
                 SupportStack::ballasted_with_ballast_mass(
@@ -167,31 +244,91 @@ pub fn track(t: Option<&TrackToml>) -> Result<Option<TrackSpec>, ConfigError> {
             }
         }
         "slab" => {
-            given(&ballast_keys)?;
-            let preset = SupportStack::slab_track(d).map_err(|e| invalid!("[track]: {e}"))?;
+            refuse(table, model, &k.ballast_keys())?;
+            let preset = SupportStack::slab_track(d).map_err(|e| invalid!("[{table}]: {e}"))?;
             let (s, m) = (preset.springs(), preset.masses());
             let pad = spring(
-                "track.pad_stiffness",
-                t.pad_stiffness,
-                "track.pad_damping",
-                t.pad_damping,
+                &key("pad_stiffness"),
+                k.pad_stiffness,
+                &key("pad_damping"),
+                k.pad_damping,
                 s[0],
             )?;
-            let slab = SUPPORT_MASS.check("track.slab_mass", t.slab_mass.unwrap_or(m[0]))?;
+            let slab = SUPPORT_MASS.check(&key("slab_mass"), k.slab_mass.unwrap_or(m[0]))?;
             let mortar = spring(
-                "track.mortar_stiffness",
-                t.mortar_stiffness,
-                "track.mortar_damping",
-                t.mortar_damping,
+                &key("mortar_stiffness"),
+                k.mortar_stiffness,
+                &key("mortar_damping"),
+                k.mortar_damping,
                 s[1],
             )?;
             SupportStack::new(vec![pad, mortar], vec![slab])
         }
-        other => bail!(
-            "[track] `model` = \"{other}\": expected \"ballasted\", \"slab\" or \"none\""
-        ),
+        other => bail!("[{table}] `model` = \"{other}\": expected \"ballasted\" or \"slab\""),
+    };
+    stack.map_err(|e| invalid!("[{table}]: {e}"))
+}
+
+/// The `[track]` table: `None` when absent or `model = "none"` (the rail is the beam).
+pub fn track(t: Option<&TrackToml>) -> Result<Option<TrackSpec>, ConfigError> {
+    let Some(t) = t else {
+        return Ok(None);
+    };
+    let model = t.model.trim().to_ascii_lowercase();
+    let top = ChainKeys::of_track(t);
+    if model == "none" {
+        refuse("track", "none", &top.ballast_keys())?;
+        refuse("track", "none", &top.slab_keys())?;
+        refuse(
+            "track",
+            "none",
+            &[
+                ("rail", t.rail.is_some()),
+                ("approach_length", t.approach_length.is_some()),
+                ("exit_length", t.exit_length.is_some()),
+                ("sleeper_spacing", t.sleeper_spacing.is_some()),
+                ("elements_per_bay", t.elements_per_bay.is_some()),
+                ("pad_stiffness", t.pad_stiffness.is_some()),
+                ("pad_damping", t.pad_damping.is_some()),
+                ("approach", t.approach.is_some()),
+                ("bridge", t.bridge.is_some()),
+                ("exit", t.exit.is_some()),
+            ],
+        )?;
+        return Ok(None);
     }
-    .map_err(|e| invalid!("[track]: {e}"))?;
+    if model != "ballasted" && model != "slab" {
+        bail!(
+            "[track] `model` = \"{}\": expected \"ballasted\", \"slab\" or \"none\"",
+            t.model.trim()
+        );
+    }
+    let d = SPACING.check(
+        "track.sleeper_spacing",
+        t.sleeper_spacing.unwrap_or(DEFAULT_SLEEPER_SPACING),
+    )?;
+    let main = chain("track", &model, &top, d)?;
+    // A zone table: the same model with some keys replaced, or another model of its own.
+    let zone = |name: &str, z: Option<&ZoneToml>| -> Result<(SupportStack, String), ConfigError> {
+        let Some(z) = z else {
+            return Ok((main.clone(), model.clone()));
+        };
+        let table = format!("track.{name}");
+        let zone_model = z
+            .model
+            .as_deref()
+            .map(|m| m.trim().to_ascii_lowercase())
+            .unwrap_or_else(|| model.clone());
+        let keys = if zone_model == model {
+            top.overridden_by(ChainKeys::of_zone(z))
+        } else {
+            ChainKeys::of_zone(z)
+        };
+        Ok((chain(&table, &zone_model, &keys, d)?, zone_model))
+    };
+    let (approach_stack, approach_model) = zone("approach", t.approach.as_ref())?;
+    let (bridge_stack, bridge_model) = zone("bridge", t.bridge.as_ref())?;
+    let (exit_stack, exit_model) = zone("exit", t.exit.as_ref())?;
     let rail_name = t.rail.as_deref().unwrap_or("60E1");
     let rail = RailSection::by_name(rail_name).ok_or_else(|| {
         invalid!("[track] `rail` = \"{rail_name}\": expected \"60E1\", \"54E1\" or \"CHN60\"")
@@ -211,14 +348,29 @@ pub fn track(t: Option<&TrackToml>) -> Result<Option<TrackSpec>, ConfigError> {
             "[track] `elements_per_bay` = {elements_per_bay}: must be even (a sleeper at mid-bay)"
         );
     }
+    // The report's name: the model, and every zone whose model differs.
+    let mut name = model.clone();
+    for (zone_name, zone_model) in [
+        ("approach", &approach_model),
+        ("bridge", &bridge_model),
+        ("exit", &exit_model),
+    ] {
+        if *zone_model != model {
+            name.push_str(&format!(", {zone_model} on the {zone_name}"));
+        }
+    }
     Ok(Some(TrackSpec {
-        model: if model == "slab" { "slab" } else { "ballasted" },
+        model: name,
         rail,
         approach,
         exit,
         sleeper_spacing: d,
         elements_per_bay,
-        supports: TrackSupports::uniform(stack),
+        supports: TrackSupports {
+            approach: approach_stack,
+            bridge: bridge_stack,
+            exit: exit_stack,
+        },
     }))
 }
 

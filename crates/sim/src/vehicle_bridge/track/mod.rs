@@ -48,8 +48,9 @@ use super::{ContactModel, CouplingSolver, Integrator, Simulation, VehicleBridgeE
 /// The track of a vehicle–bridge scenario (`[track]`, parsed by `config::track`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct TrackSpec {
-    /// The model's name for reports: `ballasted` or `slab`.
-    pub model: &'static str,
+    /// The model's name for reports: `ballasted` or `slab`, followed by the zones whose
+    /// model differs (e.g. `ballasted, slab on the bridge`).
+    pub model: String,
     /// The rail section.
     pub rail: RailSection,
     /// Length of track before the bridge \[m\] (the approach embankment).
