@@ -123,8 +123,8 @@ pub(super) struct TrackLayer {
     tmp: Vec<f64>,
     tmp_c: Vec<f64>,
     y: Vec<Vec<f64>>,
-    /// The LU storage of the k × k capacitance Jacobian.
-    lu: integrate::DenseLu<f64>,
+    /// The contact solve's work space.
+    newton: step::NewtonWork,
     sample: TrackSample,
     maxima: TrackMaxima,
     /// Output point in track coordinates \[m\].
@@ -404,7 +404,7 @@ impl TrackLayer {
             tmp: vec![0.0; n],
             tmp_c: vec![0.0; n],
             y: vec![vec![0.0; n]; nw],
-            lu: integrate::DenseLu::new(nw),
+            newton: step::NewtonWork::new(nw),
             q,
             v,
             a,

@@ -14,6 +14,7 @@ use super::TrackLayer;
 /// row-major): the Jacobian of `G(F) = F − F_law(δ₀ − S F)` is `I + diag(k_c) S`. Each
 /// iteration is damped (halved up to 30 times) until max |G| decreases. Returns the iterations;
 /// `forces` holds the start on entry and the solution on exit, `outputs` the law outputs at it.
+/// `work` holds the iteration's vectors, sized for the k wheels by [`NewtonWork::resize`].
 #[allow(clippy::too_many_arguments)]
 fn contact_forces(
     contacts: &mut [LawModel],
@@ -23,12 +24,18 @@ fn contact_forces(
     outputs: &mut [LawOutput],
     tol: f64,
     max_iter: usize,
-    lu: &mut DenseLu<f64>,
+    work: &mut NewtonWork,
 ) -> Result<(usize, f64), VehicleBridgeError> {
     let k = delta0.len();
-    let mut g = vec![0.0; k];
-    let mut step = vec![0.0; k];
-    let mut trial = vec![0.0; k];
+    let NewtonWork {
+        g,
+        step,
+        trial,
+        g_trial,
+        out_trial,
+        lu,
+        ..
+    } = work;
     let mut cf = [0.0];
     let mut eval =
         |f: &[f64], g: &mut [f64], out: &mut [LawOutput]| -> Result<f64, VehicleBridgeError> {
@@ -46,7 +53,7 @@ fn contact_forces(
             }
             Ok(worst)
         };
-    let mut residual = eval(forces, &mut g, outputs)?;
+    let mut residual = eval(forces, g, outputs)?;
     let mut change = f64::INFINITY;
     for it in 1..=max_iter {
         // (I + diag(k_c) S) ΔF = −G (one contact: a division).
@@ -68,7 +75,7 @@ fn contact_forces(
             for c in 0..k {
                 step[c] = -g[c];
             }
-            lu.solve_in_place(&mut step);
+            lu.solve_in_place(step);
         }
         let mut scale = 1.0;
         let mut accepted = false;
@@ -76,16 +83,14 @@ fn contact_forces(
             for c in 0..k {
                 trial[c] = (forces[c] + scale * step[c]).max(0.0);
             }
-            let mut g_trial = vec![0.0; k];
-            let mut out_trial = outputs.to_vec();
-            let r_trial = eval(&trial, &mut g_trial, &mut out_trial)?;
+            let r_trial = eval(trial, g_trial, out_trial)?;
             if r_trial < residual || r_trial <= tol {
                 change = (0..k)
                     .map(|c| (trial[c] - forces[c]).abs())
                     .fold(0.0, f64::max);
-                forces.copy_from_slice(&trial);
-                g.copy_from_slice(&g_trial);
-                outputs.copy_from_slice(&out_trial);
+                forces.copy_from_slice(trial);
+                g.copy_from_slice(g_trial);
+                outputs.copy_from_slice(out_trial);
                 residual = r_trial;
                 accepted = true;
                 break;
@@ -109,6 +114,51 @@ fn contact_forces(
         change,
         &format!("no convergence in {max_iter} iterations (residual {residual:e} N)"),
     ))
+}
+
+/// The vectors of a step's contact solve, sized for the wheels once (module [`super`]).
+#[derive(Debug)]
+pub(super) struct NewtonWork {
+    g: Vec<f64>,
+    step: Vec<f64>,
+    trial: Vec<f64>,
+    g_trial: Vec<f64>,
+    out_trial: Vec<LawOutput>,
+    /// The LU storage of the k × k capacitance Jacobian.
+    lu: DenseLu<f64>,
+    /// Predicted approaches δ₀, the capacitance matrix S (row-major) and the forces.
+    delta0: Vec<f64>,
+    cap: Vec<f64>,
+    forces: Vec<f64>,
+}
+
+impl NewtonWork {
+    /// Work space for `k` wheels.
+    pub(super) fn new(k: usize) -> Self {
+        Self {
+            g: vec![0.0; k],
+            step: vec![0.0; k],
+            trial: vec![0.0; k],
+            g_trial: vec![0.0; k],
+            out_trial: vec![LawOutput::default(); k],
+            lu: DenseLu::new(k),
+            delta0: vec![0.0; k],
+            cap: vec![0.0; k * k],
+            forces: vec![0.0; k],
+        }
+    }
+
+    /// Sizes the iteration vectors for `k` wheels (allocates only if k changed).
+    fn resize(&mut self, k: usize) {
+        // The step takes δ₀, S and F out while it uses them: a failed step leaves them empty.
+        if self.g.len() != k
+            || self.delta0.len() != k
+            || self.cap.len() != k * k
+            || self.forces.len() != k
+        {
+            *self = Self::new(k);
+        }
+    }
 }
 
 fn failure(iterations: usize, change: f64, reason: &str) -> VehicleBridgeError {
@@ -186,7 +236,10 @@ impl Simulation {
         // z = L⁻¹P r; y_k = L⁻¹P v_k, v_k = e_k − b_k.
         l.factor.forward(&mut l.r);
         let t_new = self.t() + dt;
-        let mut delta0 = vec![0.0; nw];
+        l.newton.resize(nw);
+        let mut delta0 = std::mem::take(&mut l.newton.delta0);
+        let mut cap = std::mem::take(&mut l.newton.cap);
+        let mut forces = std::mem::take(&mut l.newton.forces);
         for k in 0..nw {
             let x = self.scenario.wheels[k].position + self.scenario.speed * t_new;
             let pt = l.rail_point(x)?;
@@ -203,7 +256,6 @@ impl Simulation {
             self.work.r_at_wheel[k] = self.scenario.irregularity.height(x);
             delta0[k] = dot(&l.y[k], &l.r) + self.work.r_at_wheel[k];
         }
-        let mut cap = vec![0.0; nw * nw];
         for j in 0..nw {
             for k in 0..=j {
                 let c = s * dot(&l.y[j], &l.y[k]);
@@ -212,8 +264,8 @@ impl Simulation {
             }
         }
         let tol = self.scenario.coupling.tol * self.force_scale;
-        let mut forces = l.forces.clone();
-        let (iterations, _change) = contact_forces(
+        forces.copy_from_slice(&l.forces);
+        let solved = contact_forces(
             &mut self.contacts,
             &delta0,
             &cap,
@@ -221,9 +273,9 @@ impl Simulation {
             &mut self.work.outputs,
             tol,
             self.scenario.coupling.max_iter,
-            &mut l.lu,
-        )
-        .map_err(|e| match e {
+            &mut l.newton,
+        );
+        let (iterations, _change) = solved.map_err(|e| match e {
             VehicleBridgeError::CouplingFailed {
                 solver,
                 iterations,
@@ -262,6 +314,10 @@ impl Simulation {
             }
         }
         l.forces.copy_from_slice(&forces);
+        // The step's vectors back into the work space (no allocation in the next step).
+        l.newton.delta0 = delta0;
+        l.newton.cap = cap;
+        l.newton.forces = forces;
         // The simulation's DOFs to its stepper (which holds the reported state).
         let o = l.offset;
         self.stepper.restart_with_acceleration(
@@ -276,13 +332,13 @@ impl Simulation {
         stats.iterations += iterations;
         stats.max_iterations = stats.max_iterations.max(iterations);
         for k in 0..nw {
-            let touching = forces[k] > 0.0;
+            let touching = l.forces[k] > 0.0;
             if self.in_contact[k] && !touching {
                 self.loss_events += 1;
                 self.wheel_loss_events[k] += 1;
             }
             self.in_contact[k] = touching;
-            self.forces[k] = forces[k];
+            self.forces[k] = l.forces[k];
         }
         Ok(())
     }
