@@ -62,6 +62,7 @@ pub mod track;
 pub mod train;
 mod train_wheels;
 pub mod vehicle_bridge;
+pub mod wheel_contact;
 pub mod wheel_rail;
 
 /// Scenario kinds of [`load`].
