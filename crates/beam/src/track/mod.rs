@@ -1,10 +1,13 @@
 //! The railway track between the wheels and the bridge (references.md §D5): an Euler–Bernoulli
-//! rail in Hermite finite elements, continuous over an approach embankment, the bridge and an
+//! rail in Hermite finite elements (or a Timoshenko rail in interdependent-interpolation
+//! elements, [`RailElement`], §D5.5), continuous over an approach embankment, the bridge and an
 //! exit embankment, on discrete supports every sleeper spacing (rail pad, sleeper, ballast,
 //! optionally ballast mass and subgrade; or a direct-fastened/slab support), standing on rigid
 //! ground off the bridge and on the bridge modes on it.
 //!
-//! * [`RailSection`]: EI and mass per length, presets 60E1, 54E1 (EN 13674-1) and Zhai's CHN60;
+//! * [`RailSection`]: EI, mass per length, κGA and ρI, presets 60E1, 54E1 (EN 13674-1) and
+//!   Zhai's CHN60; [`RailBeam`]: Euler–Bernoulli (default) or Timoshenko;
+//! * [`RailElement`]: the rail element's stiffness, consistent mass and shape functions;
 //! * [`SpringDamper`], [`SupportStack`]: the support chain at one sleeper, presets for ballasted
 //!   high-speed track (Zhai, Wang & Lin 2004) and a slab track;
 //! * [`TrackLayout`], [`TrackSupports`], [`Track`]: the model, its sparse symmetric M, C, K, the
@@ -30,6 +33,7 @@
 //! ```
 
 mod dynamics;
+mod element;
 mod model;
 mod rail;
 mod receptance;
@@ -37,10 +41,14 @@ mod sparse;
 mod support;
 
 pub use dynamics::TrackNewmark;
+pub use element::RailElement;
 pub use model::{
     Foundation, MAX_TRACK_NODES, RailPoint, Sleeper, Track, TrackLayout, TrackSupports, Zone,
 };
-pub use rail::{RAIL_STEEL_YOUNGS_MODULUS, RailSection};
+pub use rail::{
+    RAIL_SHEAR_COEFFICIENT, RAIL_STEEL_POISSON_RATIO, RAIL_STEEL_YOUNGS_MODULUS,
+    ROTARY_INERTIA_RANGE, RailBeam, RailSection, SHEAR_STIFFNESS_RANGE,
+};
 pub use receptance::Receptance;
 pub use sparse::SparseCholesky;
 pub use support::{SpringDamper, SupportStack};

@@ -7,9 +7,9 @@
 
 use crate::damping::ModalDamping;
 use crate::error::{BeamError, finite, non_negative, positive};
-use crate::fe::shape::hermite;
 use crate::modal::{Derivative, ModalBasis};
 
+use super::element::RailElement;
 use super::rail::RailSection;
 use super::sparse::{SparseCholesky, SymmetricEntries};
 use super::support::SupportStack;
@@ -208,14 +208,15 @@ pub struct Sleeper {
     pub foundation: Foundation,
 }
 
-/// The rail DOFs of the element containing a point and their Hermite weights: the rail
+/// The rail DOFs of the element containing a point and their weights (the displacement shape
+/// functions of the rail element: Hermite, or the Timoshenko IIE's N_w): the rail
 /// displacement there is Σ wᵢ u\[dofᵢ\], and a point force F there has the consistent load
 /// vector F wᵢ on the same DOFs.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RailPoint {
     /// DOF indices (w₁, θ₁, w₂, θ₂).
     pub dofs: [usize; 4],
-    /// Hermite shape-function values at the point.
+    /// Displacement shape-function values at the point.
     pub weights: [f64; 4],
 }
 
@@ -232,6 +233,7 @@ pub struct Track {
     rail: RailSection,
     layout: TrackLayout,
     element_length: f64,
+    element: RailElement,
     node_dof: Vec<usize>,
     sleepers: Vec<Sleeper>,
     n_track: usize,
@@ -314,10 +316,9 @@ impl Track {
         let mut damping = SymmetricEntries::new(n);
         let mut stiffness = SymmetricEntries::new(n);
 
-        // Rail elements: EI/h³ and m h/420 Hermite matrices.
-        let (ei, m) = (rail.bending_stiffness(), rail.mass_per_length());
-        let ke = element_stiffness(ei, h);
-        let me = element_mass(m, h);
+        // Rail elements: Hermite (EI/h³, m h/420) or Timoshenko IIE matrices.
+        let element = RailElement::new(&rail, h)?;
+        let (ke, me) = (element.stiffness(), element.mass());
         for e in 0..n_el {
             let dofs = [
                 node_dof[e],
@@ -382,6 +383,7 @@ impl Track {
             rail,
             layout,
             element_length: h,
+            element,
             node_dof,
             sleepers,
             n_track,
@@ -415,6 +417,11 @@ impl Track {
     /// The rail section.
     pub fn rail(&self) -> RailSection {
         self.rail
+    }
+
+    /// The rail element (every element of the rail has this length and these matrices).
+    pub fn rail_element(&self) -> &RailElement {
+        &self.element
     }
 
     /// The layout.
@@ -458,7 +465,8 @@ impl Track {
         [&self.mass, &self.damping, &self.stiffness]
     }
 
-    /// The rail element containing x (0 ≤ x ≤ rail length) and its Hermite weights.
+    /// The rail element containing x (0 ≤ x ≤ rail length) and its displacement shape
+    /// functions there ([`super::RailElement::displacement_shape`]).
     pub fn rail_point(&self, x: f64) -> Result<RailPoint, BeamError> {
         let length = self.layout.rail_length();
         finite("x", x)?;
@@ -473,7 +481,7 @@ impl Track {
         let n_el = self.node_dof.len() - 1;
         let e = ((x / h).floor() as usize).min(n_el - 1);
         let xi = ((x - e as f64 * h) / h).clamp(0.0, 1.0);
-        let weights = hermite(xi, h, Derivative::Shape);
+        let weights = self.element.displacement_shape(xi);
         let (a, b) = (self.node_dof[e], self.node_dof[e + 1]);
         Ok(RailPoint {
             dofs: [a, a + 1, b, b + 1],
@@ -481,7 +489,8 @@ impl Track {
         })
     }
 
-    /// Rail displacement at x for the DOF vector `u` (Hermite interpolation).
+    /// Rail displacement at x for the DOF vector `u` (the element's displacement
+    /// interpolation).
     pub fn rail_displacement(&self, x: f64, u: &[f64]) -> Result<f64, BeamError> {
         Ok(self.rail_point(x)?.value(u))
     }
@@ -590,30 +599,6 @@ impl Track {
     pub(crate) fn mul_add(&self, which: usize, s: f64, x: &[f64], y: &mut [f64]) {
         self.matrices()[which].mul_add(s, x, y);
     }
-}
-
-/// Hermite element stiffness EI/h³ \[\[12, 6h, −12, 6h\], …\] (DOFs w₁, θ₁, w₂, θ₂).
-pub(crate) fn element_stiffness(ei: f64, h: f64) -> [[f64; 4]; 4] {
-    let c = ei / (h * h * h);
-    let (h2, hh) = (h * h, h);
-    [
-        [12.0 * c, 6.0 * hh * c, -12.0 * c, 6.0 * hh * c],
-        [6.0 * hh * c, 4.0 * h2 * c, -6.0 * hh * c, 2.0 * h2 * c],
-        [-12.0 * c, -6.0 * hh * c, 12.0 * c, -6.0 * hh * c],
-        [6.0 * hh * c, 2.0 * h2 * c, -6.0 * hh * c, 4.0 * h2 * c],
-    ]
-}
-
-/// Consistent Hermite element mass m h/420 \[\[156, 22h, 54, −13h\], …\].
-pub(crate) fn element_mass(m: f64, h: f64) -> [[f64; 4]; 4] {
-    let c = m * h / 420.0;
-    let h2 = h * h;
-    [
-        [156.0 * c, 22.0 * h * c, 54.0 * c, -13.0 * h * c],
-        [22.0 * h * c, 4.0 * h2 * c, 13.0 * h * c, -3.0 * h2 * c],
-        [54.0 * c, 13.0 * h * c, 156.0 * c, -22.0 * h * c],
-        [-13.0 * h * c, -3.0 * h2 * c, -22.0 * h * c, 4.0 * h2 * c],
-    ]
 }
 
 #[cfg(test)]

@@ -1,21 +1,77 @@
-//! Rail cross-sections: bending stiffness and mass per length of one rail (references.md §D5.1).
+//! Rail cross-sections: bending stiffness, mass per length, shear stiffness κGA and rotary
+//! inertia ρI of one rail, and the beam theory its elements use (references.md §D5.1, §D5.5).
 
 use crate::error::{BENDING_STIFFNESS_RANGE, BeamError, MASS_PER_LENGTH_RANGE, in_range, positive};
 
 /// Young's modulus of rail steel used by the EN presets \[Pa\] (references.md §D5.1).
 pub const RAIL_STEEL_YOUNGS_MODULUS: f64 = 210e9;
 
-/// One rail as an Euler–Bernoulli beam: bending stiffness EI \[N m²\] about the horizontal axis
-/// and mass per length \[kg/m\].
+/// Poisson's ratio of rail steel: G = E / (2 (1 + ν)) (references.md §D5.5).
+pub const RAIL_STEEL_POISSON_RATIO: f64 = 0.3;
+
+/// Shear coefficient κ of a rail in vertical bending (references.md §D5.5).
+pub const RAIL_SHEAR_COEFFICIENT: f64 = 0.4;
+
+/// Range of the shear stiffness κGA \[N\] (up to 1e16: the Euler–Bernoulli limit in tests).
+pub const SHEAR_STIFFNESS_RANGE: (f64, f64) = (1e3, 1e16);
+
+/// Range of the rotary inertia ρI per length \[kg m\].
+pub const ROTARY_INERTIA_RANGE: (f64, f64) = (0.0, 1e4);
+
+/// The beam theory of the rail elements.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum RailBeam {
+    /// Euler–Bernoulli: Hermite cubic elements (no shear deformation, no rotary inertia).
+    #[default]
+    EulerBernoulli,
+    /// Timoshenko: shear deformation (κGA) and rotary inertia (ρI), in the two-node
+    /// interdependent-interpolation element ([`super::RailElement`], references.md §D5.5).
+    Timoshenko,
+}
+
+impl RailBeam {
+    /// By name: `"euler_bernoulli"` or `"timoshenko"`.
+    pub fn by_name(name: &str) -> Option<Self> {
+        match name {
+            "euler_bernoulli" => Some(Self::EulerBernoulli),
+            "timoshenko" => Some(Self::Timoshenko),
+            _ => None,
+        }
+    }
+
+    /// The name `by_name` accepts.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::EulerBernoulli => "euler_bernoulli",
+            Self::Timoshenko => "timoshenko",
+        }
+    }
+}
+
+/// One rail: bending stiffness EI \[N m²\] about the horizontal axis, mass per length \[kg/m\],
+/// shear stiffness κGA \[N\] and rotary inertia ρI \[kg m\] (used by the Timoshenko beam
+/// only), and the beam theory of its elements (Euler–Bernoulli unless [`Self::timoshenko`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RailSection {
     bending_stiffness: f64,
     mass_per_length: f64,
+    shear_stiffness: f64,
+    rotary_inertia: f64,
+    beam: RailBeam,
+}
+
+/// κGA and ρI of a homogeneous steel rail of area `area` \[m²\], second moment `inertia`
+/// \[m⁴\], mass per length `mass` \[kg/m\] and Young's modulus `youngs` \[Pa\]:
+/// κ G A with G = E/(2(1 + ν)), and ρI = (m/A) I.
+fn shear_data(youngs: f64, area: f64, inertia: f64, mass: f64) -> (f64, f64) {
+    let g = youngs / (2.0 * (1.0 + RAIL_STEEL_POISSON_RATIO));
+    (RAIL_SHEAR_COEFFICIENT * g * area, mass / area * inertia)
 }
 
 impl RailSection {
-    /// A rail of bending stiffness EI \[N m²\] and mass per length m \[kg/m\] (both checked
-    /// against the physical ranges of the beam crate).
+    /// An Euler–Bernoulli rail of bending stiffness EI \[N m²\] and mass per length m \[kg/m\]
+    /// (both checked against the physical ranges of the beam crate), without shear data
+    /// (κGA = ∞, ρI = 0 until [`Self::with_shear`]).
     pub fn new(bending_stiffness: f64, mass_per_length: f64) -> Result<Self, BeamError> {
         positive("bending_stiffness", bending_stiffness)?;
         positive("mass_per_length", mass_per_length)?;
@@ -34,32 +90,92 @@ impl RailSection {
         Ok(Self {
             bending_stiffness,
             mass_per_length,
+            shear_stiffness: f64::INFINITY,
+            rotary_inertia: 0.0,
+            beam: RailBeam::EulerBernoulli,
         })
     }
 
-    /// 60E1 (UIC60), EN 13674-1: 60.21 kg/m, I = 3038.3 cm⁴, E = 210 GPa (references.md §D5.1).
-    pub fn e60() -> Self {
+    fn preset(youngs: f64, inertia: f64, mass: f64, area: f64) -> Self {
+        let (shear_stiffness, rotary_inertia) = shear_data(youngs, area, inertia, mass);
         Self {
-            bending_stiffness: RAIL_STEEL_YOUNGS_MODULUS * 3038.3e-8,
-            mass_per_length: 60.21,
+            bending_stiffness: youngs * inertia,
+            mass_per_length: mass,
+            shear_stiffness,
+            rotary_inertia,
+            beam: RailBeam::EulerBernoulli,
         }
     }
 
-    /// 54E1 (UIC54), EN 13674-1: 54.77 kg/m, I = 2337.9 cm⁴, E = 210 GPa (references.md §D5.1).
+    /// 60E1 (UIC60), EN 13674-1: 60.21 kg/m, I = 3038.3 cm⁴, A = 76.70 cm², E = 210 GPa
+    /// (references.md §D5.1); κGA = 0.4 × 80.77 GPa × A = 2.478e8 N, ρI = 0.2385 kg m
+    /// (references.md §D5.5).
+    pub fn e60() -> Self {
+        Self::preset(RAIL_STEEL_YOUNGS_MODULUS, 3038.3e-8, 60.21, 76.70e-4)
+    }
+
+    /// 54E1 (UIC54), EN 13674-1: 54.77 kg/m, I = 2337.9 cm⁴, A = 69.77 cm², E = 210 GPa
+    /// (references.md §D5.1); κGA = 2.254e8 N, ρI = 0.1835 kg m (references.md §D5.5).
     pub fn e54() -> Self {
-        Self {
-            bending_stiffness: RAIL_STEEL_YOUNGS_MODULUS * 2337.9e-8,
-            mass_per_length: 54.77,
-        }
+        Self::preset(RAIL_STEEL_YOUNGS_MODULUS, 2337.9e-8, 54.77, 69.77e-4)
     }
 
     /// The 60 kg/m rail of Zhai, Wang & Lin (2004): E = 2.059e11 Pa, I = 3.217e-5 m⁴,
-    /// 60.64 kg/m (references.md §D2.5, §D5.2), the rail of [`super::SupportStack::ballasted_high_speed`].
+    /// 60.64 kg/m (references.md §D2.5, §D5.2), the rail of [`super::SupportStack::ballasted_high_speed`];
+    /// A = 77.45 cm² for κGA and ρI (references.md §D5.5).
     pub fn chn60() -> Self {
-        Self {
-            bending_stiffness: 2.059e11 * 3.217e-5,
-            mass_per_length: 60.64,
-        }
+        Self::preset(2.059e11, 3.217e-5, 60.64, 77.45e-4)
+    }
+
+    /// The same rail in Timoshenko beam elements (its κGA and ρI; see [`RailBeam`]).
+    pub fn timoshenko(mut self) -> Self {
+        self.beam = RailBeam::Timoshenko;
+        self
+    }
+
+    /// The same rail with the beam theory `beam`.
+    pub fn with_beam(mut self, beam: RailBeam) -> Self {
+        self.beam = beam;
+        self
+    }
+
+    /// The same rail with shear stiffness κGA \[N\] (1e3 … 1e16) and rotary inertia ρI
+    /// \[kg m\] (0 … 1e4) (used by the Timoshenko beam).
+    pub fn with_shear(
+        mut self,
+        shear_stiffness: f64,
+        rotary_inertia: f64,
+    ) -> Result<Self, BeamError> {
+        in_range(
+            "rail_shear_stiffness",
+            shear_stiffness,
+            SHEAR_STIFFNESS_RANGE,
+            "N",
+        )?;
+        in_range(
+            "rail_rotary_inertia",
+            rotary_inertia,
+            ROTARY_INERTIA_RANGE,
+            "kg m",
+        )?;
+        self.shear_stiffness = shear_stiffness;
+        self.rotary_inertia = rotary_inertia;
+        Ok(self)
+    }
+
+    /// The beam theory of the rail elements.
+    pub fn beam(&self) -> RailBeam {
+        self.beam
+    }
+
+    /// Shear stiffness κGA \[N\] (∞ for a section built without shear data).
+    pub fn shear_stiffness(&self) -> f64 {
+        self.shear_stiffness
+    }
+
+    /// Rotary inertia ρI per length \[kg m\].
+    pub fn rotary_inertia(&self) -> f64 {
+        self.rotary_inertia
     }
 
     /// A preset by name: `"60E1"`/`"UIC60"`, `"54E1"`/`"UIC54"`, `"CHN60"` (case-insensitive).
@@ -82,12 +198,46 @@ impl RailSection {
         self.mass_per_length
     }
 
-    /// Pinned–pinned frequency of an Euler–Bernoulli rail on supports `spacing` apart \[Hz\]:
-    /// f_pp = (π/d)² √(EI/m) / (2π) (references.md §D5.3).
+    /// Pinned–pinned frequency of the rail on supports `spacing` apart \[Hz\]: the first
+    /// frequency of a simply supported span d = `spacing` (references.md §D5.3, §D5.5).
+    /// Euler–Bernoulli: f_pp = (π/d)² √(EI/m) / (2π); Timoshenko:
+    /// [`Self::simply_supported_frequency`] with n = 1.
     pub fn pinned_pinned_frequency(&self, spacing: f64) -> f64 {
-        let k = std::f64::consts::PI / spacing;
-        k * k * (self.bending_stiffness / self.mass_per_length).sqrt()
-            / (2.0 * std::f64::consts::PI)
+        match self.beam {
+            RailBeam::EulerBernoulli => {
+                let k = std::f64::consts::PI / spacing;
+                k * k * (self.bending_stiffness / self.mass_per_length).sqrt()
+                    / (2.0 * std::f64::consts::PI)
+            }
+            RailBeam::Timoshenko => self.simply_supported_frequency(spacing, 1),
+        }
+    }
+
+    /// Frequency \[Hz\] of the n-th flexural mode of a simply supported Timoshenko beam of length
+    /// `length` with this rail's EI, m, κGA and ρI: with w = W sin kx, ψ = Ψ cos kx, k = nπ/L,
+    /// the frequency equation (κGA k² − mω²)(EI k² + κGA − ρI ω²) = (κGA k)², whose lower
+    /// root in ω² is the flexural one (references.md §D5.5). κGA = ∞ gives the Rayleigh beam
+    /// ω² = EI k⁴ / (m + ρI k²).
+    pub fn simply_supported_frequency(&self, length: f64, n: usize) -> f64 {
+        let k = n as f64 * std::f64::consts::PI / length;
+        let (ei, m, s, j) = (
+            self.bending_stiffness,
+            self.mass_per_length,
+            self.shear_stiffness,
+            self.rotary_inertia,
+        );
+        let k2 = k * k;
+        let omega2 = if s.is_infinite() {
+            ei * k2 * k2 / (m + j * k2)
+        } else {
+            // m J ω⁴ − (m (EI k² + S) + J S k²) ω² + EI S k⁴ = 0: the smaller root, written
+            // as 2c / (b + √(b² − 4ac)) (no cancellation).
+            let a = m * j;
+            let b = m * (ei * k2 + s) + j * s * k2;
+            let c = ei * s * k2 * k2;
+            2.0 * c / (b + (b * b - 4.0 * a * c).max(0.0).sqrt())
+        };
+        omega2.sqrt() / (2.0 * std::f64::consts::PI)
     }
 }
 
