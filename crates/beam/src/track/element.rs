@@ -221,13 +221,12 @@ mod tests {
             }
         }
         let scale = el.stiffness()[0][0];
-        for a in 0..4 {
-            for b in 0..4 {
-                let want = el.stiffness()[a][b]
-                    / if a % 2 == 1 { h } else { 1.0 }
-                    / if b % 2 == 1 { h } else { 1.0 };
-                let got =
-                    k[a][b] / if a % 2 == 1 { h } else { 1.0 } / if b % 2 == 1 { h } else { 1.0 };
+        // Rotation DOFs scaled by 1/h: every entry in N/m.
+        let unit = |a: usize| if a % 2 == 1 { h } else { 1.0 };
+        for (a, row) in k.iter().enumerate() {
+            for (b, got) in row.iter().enumerate() {
+                let want = el.stiffness()[a][b] / (unit(a) * unit(b));
+                let got = got / (unit(a) * unit(b));
                 assert!(
                     (got - want).abs() < 1e-7 * scale,
                     "K[{a}][{b}] {got} vs {want}"

@@ -259,5 +259,28 @@ mod tests {
         // f_pp of 60E1 at 0.6 m: (π/0.6)² √(6.38043e6/60.21)/(2π) = 1420.39 Hz (computed by hand, 6 digits).
         let f = RailSection::e60().pinned_pinned_frequency(0.6);
         assert!((f - 1420.39).abs() < 0.01, "{f}");
+        // Shear data (by hand): 60E1 κGA = 0.4 × 210e9/2.6 × 76.70e-4 = 2.478e8 N,
+        // ρI = 60.21 × 3038.3e-8 / 76.70e-4 = 0.238509 kg m; 54E1 2.25411e8 N, 0.183527 kg m.
+        assert_eq!(r.beam(), RailBeam::EulerBernoulli);
+        assert!((r.shear_stiffness() / 2.478e8 - 1.0).abs() < 1e-12);
+        assert!((r.rotary_inertia() - 0.238509).abs() < 1e-6);
+        let r54 = RailSection::e54();
+        assert!((r54.shear_stiffness() / 2.25411e8 - 1.0).abs() < 1e-5);
+        assert!((r54.rotary_inertia() - 0.183527).abs() < 1e-6);
+        assert_eq!(r.timoshenko().beam(), RailBeam::Timoshenko);
+        let err = r.with_shear(-1.0, 0.2).unwrap_err().to_string();
+        assert!(err.contains("rail_shear_stiffness"), "{err}");
+        let err = r.with_shear(1e8, -0.2).unwrap_err().to_string();
+        assert!(err.contains("rail_rotary_inertia"), "{err}");
+        assert_eq!(RailBeam::by_name("timoshenko"), Some(RailBeam::Timoshenko));
+        assert_eq!(
+            RailBeam::by_name(RailBeam::EulerBernoulli.name()),
+            Some(RailBeam::EulerBernoulli)
+        );
+        // Without shear data the section is Euler–Bernoulli with κGA = ∞: its Timoshenko
+        // frequency is the Rayleigh beam's with ρI = 0, i.e. the Euler–Bernoulli one.
+        let plain = RailSection::new(6.38043e6, 60.21).unwrap();
+        let ft = plain.timoshenko().pinned_pinned_frequency(0.6);
+        assert!((ft / plain.pinned_pinned_frequency(0.6) - 1.0).abs() < 1e-14);
     }
 }

@@ -3,7 +3,10 @@
 //! continued on approach and exit embankments (references.md §D5). Absent or
 //! `model = "none"`: the rail is the beam, as without the table. SI units.
 
-use beam::track::{RailSection, SpringDamper, SupportStack, TrackSupports};
+use beam::track::{
+    ROTARY_INERTIA_RANGE, RailBeam, RailSection, SHEAR_STIFFNESS_RANGE, SpringDamper, SupportStack,
+    TrackSupports,
+};
 use serde::Deserialize;
 
 use super::ConfigError;
@@ -29,6 +32,12 @@ const SUPPORT_STIFFNESS: Range = Range::closed(1e4, 1e13, "N/m");
 const SUPPORT_DAMPING: Range = Range::closed(0.0, 1e9, "N s/m");
 /// Sleeper, ballast and slab masses.
 const SUPPORT_MASS: Range = Range::closed(1e-3, 1e6, "kg");
+/// The rail's shear stiffness κGA (Timoshenko).
+const RAIL_SHEAR_STIFFNESS: Range =
+    Range::closed(SHEAR_STIFFNESS_RANGE.0, SHEAR_STIFFNESS_RANGE.1, "N");
+/// The rail's rotary inertia ρI per length (Timoshenko).
+const RAIL_ROTARY_INERTIA: Range =
+    Range::closed(ROTARY_INERTIA_RANGE.0, ROTARY_INERTIA_RANGE.1, "kg m");
 
 /// `[track]`.
 #[derive(Debug, Deserialize)]
@@ -38,6 +47,12 @@ pub struct TrackToml {
     pub model: String,
     /// Rail section preset: `60E1` (default), `54E1`, `CHN60`.
     pub rail: Option<String>,
+    /// The rail's beam theory: `euler_bernoulli` (default) or `timoshenko`.
+    pub rail_beam: Option<String>,
+    /// Timoshenko: the rail's shear stiffness κGA \[N\] (default: the preset's).
+    pub rail_shear_stiffness: Option<f64>,
+    /// Timoshenko: the rail's rotary inertia ρI per length \[kg m\] (default: the preset's).
+    pub rail_rotary_inertia: Option<f64>,
     pub approach_length: Option<f64>,
     pub exit_length: Option<f64>,
     pub sleeper_spacing: Option<f64>,
@@ -269,6 +284,47 @@ fn chain(table: &str, model: &str, k: &ChainKeys, d: f64) -> Result<SupportStack
     stack.map_err(|e| invalid!("[{table}]: {e}"))
 }
 
+/// The rail of `[track]`: the section preset `rail`, its beam theory `rail_beam` and, for the
+/// Timoshenko beam, `rail_shear_stiffness` and `rail_rotary_inertia` (the preset's values by
+/// default; both refused with the Euler–Bernoulli beam, which has neither).
+fn rail(t: &TrackToml) -> Result<RailSection, ConfigError> {
+    let rail_name = t.rail.as_deref().unwrap_or("60E1");
+    let rail = RailSection::by_name(rail_name).ok_or_else(|| {
+        invalid!("[track] `rail` = \"{rail_name}\": expected \"60E1\", \"54E1\" or \"CHN60\"")
+    })?;
+    let beam_name = t.rail_beam.as_deref().unwrap_or("euler_bernoulli");
+    let beam = RailBeam::by_name(beam_name.trim()).ok_or_else(|| {
+        invalid!(
+            "[track] `rail_beam` = \"{beam_name}\": expected \"euler_bernoulli\" or \"timoshenko\""
+        )
+    })?;
+    if beam == RailBeam::EulerBernoulli {
+        for (key, given) in [
+            ("rail_shear_stiffness", t.rail_shear_stiffness.is_some()),
+            ("rail_rotary_inertia", t.rail_rotary_inertia.is_some()),
+        ] {
+            if given {
+                bail!(
+                    "[track] `{key}` does not apply to rail_beam = \"euler_bernoulli\" (the default): set rail_beam = \"timoshenko\""
+                );
+            }
+        }
+        return Ok(rail);
+    }
+    let shear = RAIL_SHEAR_STIFFNESS.check(
+        "track.rail_shear_stiffness",
+        t.rail_shear_stiffness.unwrap_or(rail.shear_stiffness()),
+    )?;
+    let rotary = RAIL_ROTARY_INERTIA.check(
+        "track.rail_rotary_inertia",
+        t.rail_rotary_inertia.unwrap_or(rail.rotary_inertia()),
+    )?;
+    Ok(rail
+        .with_shear(shear, rotary)
+        .map_err(|e| invalid!("[track]: {e}"))?
+        .timoshenko())
+}
+
 /// The `[track]` table: `None` when absent or `model = "none"` (the rail is the beam).
 pub fn track(t: Option<&TrackToml>) -> Result<Option<TrackSpec>, ConfigError> {
     let Some(t) = t else {
@@ -284,6 +340,9 @@ pub fn track(t: Option<&TrackToml>) -> Result<Option<TrackSpec>, ConfigError> {
             "none",
             &[
                 ("rail", t.rail.is_some()),
+                ("rail_beam", t.rail_beam.is_some()),
+                ("rail_shear_stiffness", t.rail_shear_stiffness.is_some()),
+                ("rail_rotary_inertia", t.rail_rotary_inertia.is_some()),
                 ("approach_length", t.approach_length.is_some()),
                 ("exit_length", t.exit_length.is_some()),
                 ("sleeper_spacing", t.sleeper_spacing.is_some()),
@@ -329,10 +388,7 @@ pub fn track(t: Option<&TrackToml>) -> Result<Option<TrackSpec>, ConfigError> {
     let (approach_stack, approach_model) = zone("approach", t.approach.as_ref())?;
     let (bridge_stack, bridge_model) = zone("bridge", t.bridge.as_ref())?;
     let (exit_stack, exit_model) = zone("exit", t.exit.as_ref())?;
-    let rail_name = t.rail.as_deref().unwrap_or("60E1");
-    let rail = RailSection::by_name(rail_name).ok_or_else(|| {
-        invalid!("[track] `rail` = \"{rail_name}\": expected \"60E1\", \"54E1\" or \"CHN60\"")
-    })?;
+    let rail = rail(t)?;
     let approach = EMBANKMENT.check(
         "track.approach_length",
         t.approach_length.unwrap_or(DEFAULT_EMBANKMENT),
