@@ -50,5 +50,5 @@ pub use rail::{
     ROTARY_INERTIA_RANGE, RailBeam, RailSection, SHEAR_STIFFNESS_RANGE,
 };
 pub use receptance::Receptance;
-pub use sparse::SparseCholesky;
+pub use sparse::{SparseCholesky, SparseReach};
 pub use support::{SpringDamper, SupportStack};

@@ -116,10 +116,29 @@ pub struct SparseCholesky {
     values: Vec<f64>,
     /// 1 / L\[j, j\] (a product instead of a division on the sweeps' critical path).
     inv_diag: Vec<f64>,
+    /// Elimination tree: the parent of column j is the row of its first sub-diagonal entry
+    /// (`usize::MAX` for a root).
+    parent: Vec<usize>,
     work: Vec<f64>,
     /// faer's symbolic factor and solve workspace (the full solve).
     symbolic: SymbolicCholesky<usize>,
     stack: MemBuffer,
+}
+
+/// The columns reached by a sparse forward sweep ([`SparseCholesky::forward_sparse_reach`]):
+/// the non-zero pattern of L⁻¹Pb, in increasing order, and the marks of the tree walk.
+#[derive(Debug, Clone)]
+pub struct SparseReach {
+    nodes: Vec<usize>,
+    mark: Vec<u32>,
+    stamp: u32,
+}
+
+impl SparseReach {
+    /// The columns (permuted order) where the last sweep's result may be non-zero, increasing.
+    pub fn nodes(&self) -> &[usize] {
+        &self.nodes
+    }
 }
 
 impl std::fmt::Debug for SparseCholesky {
@@ -249,6 +268,15 @@ impl SparseCholesky {
             inverse[perm.as_ref().map_or(i, |p| p[i])] = i;
         }
         let inv_diag = (0..n).map(|j| 1.0 / values[col_ptr[j]]).collect();
+        let parent = (0..n)
+            .map(|j| {
+                if col_ptr[j + 1] > col_ptr[j] + 1 {
+                    row_idx[col_ptr[j] + 1]
+                } else {
+                    usize::MAX
+                }
+            })
+            .collect();
         Ok(Self {
             n,
             perm,
@@ -257,6 +285,7 @@ impl SparseCholesky {
             row_idx,
             values,
             inv_diag,
+            parent,
             work: vec![0.0; n],
             symbolic,
             stack,
@@ -277,13 +306,20 @@ impl SparseCholesky {
     /// (the entries before `start` must be zero).
     fn lower_solve(&self, x: &mut [f64], start: usize) {
         for j in start..self.n {
-            let (a, b) = (self.col_ptr[j], self.col_ptr[j + 1]);
-            let xj = x[j] * self.inv_diag[j];
-            x[j] = xj;
-            if xj != 0.0 {
-                for k in a + 1..b {
-                    x[self.row_idx[k]] -= self.values[k] * xj;
-                }
+            self.eliminate_column(x, j);
+        }
+    }
+
+    /// Column j of the forward sweep: x\[j\] ← x\[j\] / L\[j, j\], then x\[i\] −= L\[i, j\] x\[j\]
+    /// below the diagonal (skipped when x\[j\] = 0).
+    #[inline]
+    fn eliminate_column(&self, x: &mut [f64], j: usize) {
+        let (a, b) = (self.col_ptr[j], self.col_ptr[j + 1]);
+        let xj = x[j] * self.inv_diag[j];
+        x[j] = xj;
+        if xj != 0.0 {
+            for (&i, &l) in self.row_idx[a + 1..b].iter().zip(&self.values[a + 1..b]) {
+                x[i] -= l * xj;
             }
         }
     }
@@ -312,13 +348,59 @@ impl SparseCholesky {
         self.lower_solve(out, start);
     }
 
+    /// A work space for [`Self::forward_sparse_reach`] (sized for this factor).
+    pub fn new_reach(&self) -> SparseReach {
+        SparseReach {
+            nodes: Vec::new(),
+            mark: vec![0; self.n],
+            stamp: 0,
+        }
+    }
+
+    /// [`Self::forward_sparse`] restricted to the reach of b: out ← L⁻¹ P b, sweeping only the
+    /// columns on the paths of the elimination tree from the non-zeros of P b to the root (the
+    /// only entries of L⁻¹Pb that can be non-zero; Gilbert & Peierls), which `reach` lists
+    /// afterwards in increasing order. `out` must be zero except at the entries `reach` listed
+    /// on entry (the previous call's result with the same `out`): those are cleared first. The
+    /// same operations in the same order as [`Self::forward_sparse`] on those columns (the
+    /// others hold exact zeros there), so the result is identical.
+    pub fn forward_sparse_reach(
+        &self,
+        b: &[(usize, f64)],
+        out: &mut [f64],
+        reach: &mut SparseReach,
+    ) {
+        for &i in &reach.nodes {
+            out[i] = 0.0;
+        }
+        reach.nodes.clear();
+        reach.stamp = reach.stamp.wrapping_add(1);
+        if reach.stamp == 0 {
+            reach.mark.fill(0);
+            reach.stamp = 1;
+        }
+        for &(i, v) in b {
+            let mut j = self.inverse[i];
+            out[j] += v;
+            while j != usize::MAX && reach.mark[j] != reach.stamp {
+                reach.mark[j] = reach.stamp;
+                reach.nodes.push(j);
+                j = self.parent[j];
+            }
+        }
+        reach.nodes.sort_unstable();
+        for &j in &reach.nodes {
+            self.eliminate_column(out, j);
+        }
+    }
+
     /// z ← Pᵀ L⁻ᵀ z (the backward half of a solve).
     pub fn backward(&mut self, z: &mut [f64]) {
         for j in (0..self.n).rev() {
             let (a, b) = (self.col_ptr[j], self.col_ptr[j + 1]);
             let mut s = z[j];
-            for k in a + 1..b {
-                s -= self.values[k] * z[self.row_idx[k]];
+            for (&i, &l) in self.row_idx[a + 1..b].iter().zip(&self.values[a + 1..b]) {
+                s -= l * z[i];
             }
             z[j] = s * self.inv_diag[j];
         }
@@ -384,6 +466,19 @@ mod tests {
             (split - full).abs() < 1e-12 * full.abs().max(1.0),
             "{split} {full}"
         );
+        // The reach-restricted sweep: identical to the full one, twice in a row on one vector.
+        let mut reach = f.new_reach();
+        let mut y2 = vec![0.0; n];
+        for b in [
+            [(30usize, 2.0), (12usize, -1.0)],
+            [(7usize, 1.5), (30usize, -0.5)],
+        ] {
+            f.forward_sparse(&b, &mut y);
+            f.forward_sparse_reach(&b, &mut y2, &mut reach);
+            assert_eq!(y, y2);
+            assert!(reach.nodes().windows(2).all(|w| w[0] < w[1]));
+            assert!(reach.nodes().len() < n);
+        }
         let mut fb = r.clone();
         f.forward(&mut fb);
         f.backward(&mut fb);

@@ -37,7 +37,9 @@
 
 mod step;
 
-use beam::track::{RailPoint, RailSection, SparseCholesky, Track, TrackLayout, TrackSupports};
+use beam::track::{
+    RailPoint, RailSection, SparseCholesky, SparseReach, Track, TrackLayout, TrackSupports,
+};
 use faer::sparse::Triplet;
 use integrate::structural::AlphaParameters;
 use integrate::structural::sparse::SparseMatrix;
@@ -123,6 +125,8 @@ pub(super) struct TrackLayer {
     tmp: Vec<f64>,
     tmp_c: Vec<f64>,
     y: Vec<Vec<f64>>,
+    /// The non-zero pattern of each y_k (the reach of its sparse forward sweep).
+    reach: Vec<SparseReach>,
     /// The contact solve's work space.
     newton: step::NewtonWork,
     sample: TrackSample,
@@ -387,6 +391,7 @@ impl TrackLayer {
         sim.stepper
             .restart_with_acceleration(&mut sim.structure, 0.0, &q_sim, &v_sim, &a_sim)?;
         let output_x = sim.scenario.output_point + approach;
+        let reach = (0..nw).map(|_| factor.new_reach()).collect();
         Ok(Self {
             params,
             offset,
@@ -404,6 +409,7 @@ impl TrackLayer {
             tmp: vec![0.0; n],
             tmp_c: vec![0.0; n],
             y: vec![vec![0.0; n]; nw],
+            reach,
             newton: step::NewtonWork::new(nw),
             q,
             v,

@@ -251,14 +251,15 @@ impl Simulation {
                 (pt.dofs[2], -pt.weights[2]),
                 (pt.dofs[3], -pt.weights[3]),
             ];
-            l.factor.forward_sparse(&v, &mut l.y[k]);
+            l.factor
+                .forward_sparse_reach(&v, &mut l.y[k], &mut l.reach[k]);
             l.points[k] = pt;
             self.work.r_at_wheel[k] = self.scenario.irregularity.height(x);
-            delta0[k] = dot(&l.y[k], &l.r) + self.work.r_at_wheel[k];
+            delta0[k] = dot(l.reach[k].nodes(), &l.y[k], &l.r) + self.work.r_at_wheel[k];
         }
         for j in 0..nw {
             for k in 0..=j {
-                let c = s * dot(&l.y[j], &l.y[k]);
+                let c = s * dot(l.reach[j].nodes(), &l.y[j], &l.y[k]);
                 cap[j * nw + k] = c;
                 cap[k * nw + j] = c;
             }
@@ -295,8 +296,8 @@ impl Simulation {
         })?;
         for k in 0..nw {
             let f = s * forces[k];
-            for (z, y) in l.r.iter_mut().zip(&l.y[k]) {
-                *z -= f * y;
+            for &i in l.reach[k].nodes() {
+                l.r[i] -= f * l.y[k][i];
             }
             self.work.delta[k] =
                 delta0[k] - (0..nw).map(|j| cap[k * nw + j] * forces[j]).sum::<f64>();
@@ -431,22 +432,29 @@ impl Simulation {
     }
 }
 
-/// aᵀb with four partial sums (independent chains of additions), over the entries from the
-/// first non-zero of `a` on (y = L⁻¹Pv is zero before the first non-zero of Pv).
-fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let start = a.iter().position(|&x| x != 0.0).unwrap_or(a.len());
-    let (a, b) = (&a[start..], &b[start.min(b.len())..]);
-    let n = a.len().min(b.len());
+/// aᵀb for an `a` that is zero outside `nodes` (increasing; y = L⁻¹Pv is zero off the reach
+/// of its sweep), summed over `nodes` only but as over all entries from the first non-zero of
+/// `a` on with four partial sums (independent chains of additions): entry i goes to partial
+/// sum (i − start) mod 4 within the whole blocks of four, the rest is added in order after.
+/// The skipped entries contribute exact zeros, so the sum is the full one, bit for bit.
+fn dot(nodes: &[usize], a: &[f64], b: &[f64]) -> f64 {
+    let Some(first) = nodes.iter().position(|&i| a[i] != 0.0) else {
+        return 0.0;
+    };
+    let nodes = &nodes[first..];
+    let start = nodes[0];
+    let n = (a.len() - start).min(b.len().saturating_sub(start));
+    let body_end = start + 4 * (n / 4);
+    let split = nodes.partition_point(|&i| i < body_end);
     let mut acc = [0.0f64; 4];
-    let chunks = n / 4;
-    for c in 0..chunks {
-        for (j, s) in acc.iter_mut().enumerate() {
-            *s += a[4 * c + j] * b[4 * c + j];
-        }
+    for &i in &nodes[..split] {
+        acc[(i - start) % 4] += a[i] * b[i];
     }
     let mut total = (acc[0] + acc[1]) + (acc[2] + acc[3]);
-    for i in 4 * chunks..n {
-        total += a[i] * b[i];
+    for &i in &nodes[split..] {
+        if i < start + n {
+            total += a[i] * b[i];
+        }
     }
     total
 }
