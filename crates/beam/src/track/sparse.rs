@@ -119,6 +119,11 @@ pub struct SparseCholesky {
     /// Elimination tree: the parent of column j is the row of its first sub-diagonal entry
     /// (`usize::MAX` for a root).
     parent: Vec<usize>,
+    /// The strictly lower part of L by rows (columns increasing): `row_cols[row_ptr[i]..]`,
+    /// `row_values[..]`, for the full forward sweep in gather form.
+    row_ptr: Vec<usize>,
+    row_cols: Vec<usize>,
+    row_values: Vec<f64>,
     work: Vec<f64>,
     /// faer's symbolic factor and solve workspace (the full solve).
     symbolic: SymbolicCholesky<usize>,
@@ -277,6 +282,28 @@ impl SparseCholesky {
                 }
             })
             .collect();
+        // L by rows: counting sort of the strictly lower entries (columns visited in order, so
+        // each row's columns come out increasing).
+        let mut row_ptr = vec![0usize; n + 1];
+        for j in 0..n {
+            for &i in &row_idx[col_ptr[j] + 1..col_ptr[j + 1]] {
+                row_ptr[i + 1] += 1;
+            }
+        }
+        for i in 0..n {
+            row_ptr[i + 1] += row_ptr[i];
+        }
+        let mut fill = row_ptr.clone();
+        let mut row_cols = vec![0usize; row_ptr[n]];
+        let mut row_values = vec![0.0; row_ptr[n]];
+        for j in 0..n {
+            for k in col_ptr[j] + 1..col_ptr[j + 1] {
+                let i = row_idx[k];
+                row_cols[fill[i]] = j;
+                row_values[fill[i]] = values[k];
+                fill[i] += 1;
+            }
+        }
         Ok(Self {
             n,
             perm,
@@ -286,6 +313,9 @@ impl SparseCholesky {
             values,
             inv_diag,
             parent,
+            row_ptr,
+            row_cols,
+            row_values,
             work: vec![0.0; n],
             symbolic,
             stack,
@@ -324,7 +354,10 @@ impl SparseCholesky {
         }
     }
 
-    /// r ← L⁻¹ P r (the forward half of a solve; the result is in the permuted order).
+    /// r ← L⁻¹ P r (the forward half of a solve; the result is in the permuted order), row
+    /// by row: x\[i\] = (b\[i\] − Σ_{j<i} L\[i, j\] x\[j\]) / L\[i, i\] with j increasing, the
+    /// subtractions of the column sweep in the same order (one accumulator per row, no
+    /// scattered stores).
     pub fn forward(&mut self, r: &mut [f64]) {
         if let Some(p) = &self.perm {
             for (w, &pi) in self.work.iter_mut().zip(p) {
@@ -332,7 +365,14 @@ impl SparseCholesky {
             }
             r.copy_from_slice(&self.work);
         }
-        self.lower_solve(r, 0);
+        for (i, (ends, inv)) in self.row_ptr.windows(2).zip(&self.inv_diag).enumerate() {
+            let (a, b) = (ends[0], ends[1]);
+            let mut acc = r[i];
+            for (&j, &l) in self.row_cols[a..b].iter().zip(&self.row_values[a..b]) {
+                acc -= l * r[j];
+            }
+            r[i] = acc * inv;
+        }
     }
 
     /// out ← L⁻¹ P b for a sparse b given as (DOF, value) pairs (`out` has length n); the sweep
@@ -396,13 +436,19 @@ impl SparseCholesky {
 
     /// z ← Pᵀ L⁻ᵀ z (the backward half of a solve).
     pub fn backward(&mut self, z: &mut [f64]) {
-        for j in (0..self.n).rev() {
-            let (a, b) = (self.col_ptr[j], self.col_ptr[j + 1]);
+        for (j, (ends, inv)) in self
+            .col_ptr
+            .windows(2)
+            .zip(&self.inv_diag)
+            .enumerate()
+            .rev()
+        {
+            let (a, b) = (ends[0] + 1, ends[1]);
             let mut s = z[j];
-            for (&i, &l) in self.row_idx[a + 1..b].iter().zip(&self.values[a + 1..b]) {
+            for (&i, &l) in self.row_idx[a..b].iter().zip(&self.values[a..b]) {
                 s -= l * z[i];
             }
-            z[j] = s * self.inv_diag[j];
+            z[j] = s * inv;
         }
         if let Some(p) = &self.perm {
             for (i, &pi) in p.iter().enumerate() {
