@@ -4,7 +4,11 @@
 //! force against the static bowl, the sleeper-passing frequency at speed, and the stiff-track
 //! limit on a bridge.
 
+mod track_common;
+
 use std::f64::consts::PI;
+
+use track_common::{mean_deflection, peak, pinned_pinned_peak, preset_track};
 
 use beam::track::{
     RailSection, Receptance, SpringDamper, SupportStack, Track, TrackLayout, TrackNewmark,
@@ -39,23 +43,11 @@ fn winkler_limit_of_close_sleepers() {
     let mut errors = Vec::new();
     let mut spacing = 0.6;
     for _ in 0..5 {
-        let stack = SupportStack::direct(SpringDamper::new(k_f * spacing, 0.0).unwrap()).unwrap();
-        let layout = TrackLayout::new(20.0, 0.0, 20.0, spacing)
-            .unwrap()
-            .with_elements_per_bay(2)
-            .unwrap();
-        let track = Track::on_ground(rail, layout, &TrackSupports::uniform(stack)).unwrap();
         // Mean of the loads over a sleeper and mid-way between two.
-        let mid = (layout.n_bays() / 2) as f64 * spacing;
-        let mut w = 0.0;
-        for x in [mid, mid + 0.5 * spacing] {
-            let mut load = vec![0.0; track.n_dofs()];
-            track.add_point_force(x, force, &mut load).unwrap();
-            let u = track.static_solution(&load).unwrap();
-            w += 0.5 * track.rail_displacement(x, &u).unwrap();
+        let w = mean_deflection(rail, k_f, spacing, force, |track, x, u| {
             if spacing < 0.05 {
                 for dx in [1.0, 2.0] {
-                    let got = track.rail_displacement(x + dx, &u).unwrap();
+                    let got = track.rail_displacement(x + dx, u).unwrap();
                     let want = winkler(force, k_f, ei, dx);
                     assert!(
                         (got - want).abs() < 2e-4 * w0,
@@ -63,7 +55,7 @@ fn winkler_limit_of_close_sleepers() {
                     );
                 }
             }
-        }
+        });
         errors.push((spacing, (w - w0) / w0));
         spacing /= 2.0;
     }
@@ -77,34 +69,6 @@ fn winkler_limit_of_close_sleepers() {
     assert!(errors[0].1.abs() < 1e-2, "{errors:?}");
 }
 
-fn preset_track(rail: RailSection, bays: usize, elements_per_bay: usize, c_factor: f64) -> Track {
-    let d = SupportStack::BALLASTED_HIGH_SPEED_SPACING;
-    let half = bays as f64 * d / 2.0;
-    let layout = TrackLayout::new(half, 0.0, half, d)
-        .unwrap()
-        .with_elements_per_bay(elements_per_bay)
-        .unwrap();
-    let stack = SupportStack::ballasted_high_speed()
-        .scaled(1.0, c_factor)
-        .unwrap();
-    Track::on_ground(rail, layout, &TrackSupports::uniform(stack)).unwrap()
-}
-
-/// Frequency of the largest |f(ν)| on a grid from `lo` to `hi` (step `step`), then refined by a
-/// grid 40 times finer around it.
-fn peak(lo: f64, hi: f64, step: f64, f: impl Fn(f64) -> f64) -> f64 {
-    let argmax = |a: f64, b: f64, s: f64| {
-        let n = ((b - a) / s).round() as usize;
-        (0..=n)
-            .map(|i| a + i as f64 * s)
-            .map(|x| (x, f(x)))
-            .fold((a, f64::MIN), |m, p| if p.1 > m.1 { p } else { m })
-            .0
-    };
-    let coarse = argmax(lo, hi, step);
-    argmax(coarse - step, coarse + step, step / 40.0)
-}
-
 /// Pinned–pinned resonance of the discretely supported rail: the mid-bay point receptance of the
 /// 60E1 rail on the ballasted preset peaks at f_pp = (π/d)² √(EI/m)/(2π) (1420.4 Hz, the
 /// Euler–Bernoulli value: measured tracks show ≈ 1 kHz because of shear, which this rail model
@@ -114,15 +78,8 @@ fn peak(lo: f64, hi: f64, step: f64, f: impl Fn(f64) -> f64) -> f64 {
 #[test]
 fn pinned_pinned_frequency() {
     let rail = RailSection::e60();
-    let track = preset_track(rail, 40, 8, 1.0);
     let f_pp = rail.pinned_pinned_frequency(0.6);
-    let r = Receptance::new(&track);
-    let x_mid = 20.0 * 0.6;
-    let f = peak(0.9 * f_pp, 1.05 * f_pp, 2.0, |f| {
-        r.rail(x_mid, x_mid, f).unwrap().norm()
-    });
-    let at_mid = r.rail(x_mid, x_mid, f).unwrap().norm();
-    let at_sleeper = r.rail(x_mid + 0.3, x_mid + 0.3, f).unwrap().norm();
+    let (f, at_mid, at_sleeper) = pinned_pinned_peak(rail);
     println!(
         "f_pp closed form {f_pp:.2} Hz, FE peak {f:.2} Hz ({:+.3} %); |α| mid-bay {at_mid:.3e}, over sleeper {at_sleeper:.3e} m/N",
         100.0 * (f / f_pp - 1.0)

@@ -4,12 +4,13 @@
 //! Timoshenko beam (element convergence), the pinned–pinned frequency of the discretely
 //! supported rail, and the Euler–Bernoulli limit κGA → ∞.
 
+mod track_common;
+
 use std::f64::consts::PI;
 
-use beam::track::{
-    RailBeam, RailElement, RailSection, Receptance, SpringDamper, SupportStack, Track, TrackLayout,
-    TrackSupports,
-};
+use track_common::{mean_deflection, pinned_pinned_peak, preset_track};
+
+use beam::track::{RailBeam, RailElement, RailSection, SupportStack};
 use faer::{Mat, Side};
 
 /// Deflection under a point force F of an infinite Timoshenko beam on a Winkler foundation k
@@ -44,20 +45,7 @@ fn timoshenko_winkler_limit_of_close_sleepers() {
     let mut errors = Vec::new();
     let mut spacing = 0.6;
     for _ in 0..5 {
-        let stack = SupportStack::direct(SpringDamper::new(k_f * spacing, 0.0).unwrap()).unwrap();
-        let layout = TrackLayout::new(20.0, 0.0, 20.0, spacing)
-            .unwrap()
-            .with_elements_per_bay(2)
-            .unwrap();
-        let track = Track::on_ground(rail, layout, &TrackSupports::uniform(stack)).unwrap();
-        let mid = (layout.n_bays() / 2) as f64 * spacing;
-        let mut w = 0.0;
-        for x in [mid, mid + 0.5 * spacing] {
-            let mut load = vec![0.0; track.n_dofs()];
-            track.add_point_force(x, force, &mut load).unwrap();
-            let u = track.static_solution(&load).unwrap();
-            w += 0.5 * track.rail_displacement(x, &u).unwrap();
-        }
+        let w = mean_deflection(rail, k_f, spacing, force, |_, _, _| ());
         errors.push((spacing, (w - w0) / w0));
         spacing /= 2.0;
     }
@@ -206,31 +194,6 @@ fn simply_supported_timoshenko_frequencies_converge() {
     assert!(ratio < 0.8, "{ratio}");
 }
 
-fn preset_track(rail: RailSection, bays: usize, elements_per_bay: usize) -> Track {
-    let d = SupportStack::BALLASTED_HIGH_SPEED_SPACING;
-    let half = bays as f64 * d / 2.0;
-    let layout = TrackLayout::new(half, 0.0, half, d)
-        .unwrap()
-        .with_elements_per_bay(elements_per_bay)
-        .unwrap();
-    let supports = TrackSupports::uniform(SupportStack::ballasted_high_speed());
-    Track::on_ground(rail, layout, &supports).unwrap()
-}
-
-/// Frequency of the largest f(ν) on a grid (step `step`), refined by a grid 40 times finer.
-fn peak(lo: f64, hi: f64, step: f64, f: impl Fn(f64) -> f64) -> f64 {
-    let argmax = |a: f64, b: f64, s: f64| {
-        let n = ((b - a) / s).round() as usize;
-        (0..=n)
-            .map(|i| a + i as f64 * s)
-            .map(|x| (x, f(x)))
-            .fold((a, f64::MIN), |m, p| if p.1 > m.1 { p } else { m })
-            .0
-    };
-    let coarse = argmax(lo, hi, step);
-    argmax(coarse - step, coarse + step, step / 40.0)
-}
-
 /// Pinned–pinned resonance of the discretely supported Timoshenko rail (60E1 on the ballasted
 /// preset, 40 bays, 8 elements per bay): the mid-bay receptance peaks at the first frequency
 /// of the simply supported Timoshenko span d (the mode does not load the supports), far below
@@ -245,14 +208,7 @@ fn timoshenko_pinned_pinned_frequency() {
     let f_eb = rail
         .with_beam(RailBeam::EulerBernoulli)
         .pinned_pinned_frequency(0.6);
-    let track = preset_track(rail, 40, 8);
-    let r = Receptance::new(&track);
-    let x_mid = 20.0 * 0.6;
-    let f = peak(0.9 * f_pp, 1.05 * f_pp, 2.0, |f| {
-        r.rail(x_mid, x_mid, f).unwrap().norm()
-    });
-    let at_mid = r.rail(x_mid, x_mid, f).unwrap().norm();
-    let at_sleeper = r.rail(x_mid + 0.3, x_mid + 0.3, f).unwrap().norm();
+    let (f, at_mid, at_sleeper) = pinned_pinned_peak(rail);
     println!(
         "f_pp Timoshenko closed form {f_pp:.2} Hz (Euler-Bernoulli {f_eb:.2} Hz), FE peak {f:.2} Hz ({:+.3} %); |α| mid-bay {at_mid:.3e}, over sleeper {at_sleeper:.3e} m/N",
         100.0 * (f / f_pp - 1.0)
@@ -273,7 +229,7 @@ fn timoshenko_pinned_pinned_frequency() {
 fn stiff_shear_converges_to_euler_bernoulli() {
     let eb = RailSection::e60();
     let deflection = |rail: RailSection| -> f64 {
-        let track = preset_track(rail, 40, 4);
+        let track = preset_track(rail, 40, 4, 1.0);
         let x = 20.0 * 0.6 + 0.3;
         let mut load = vec![0.0; track.n_dofs()];
         track.add_point_force(x, 100e3, &mut load).unwrap();
