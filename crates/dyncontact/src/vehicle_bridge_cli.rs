@@ -44,6 +44,8 @@ pub struct TractionSummaryJson {
 #[derive(Serialize)]
 pub struct TrackSummaryJson {
     pub model: String,
+    /// The rail's beam theory: `euler_bernoulli` or `timoshenko`.
+    pub rail_beam: &'static str,
     /// Track DOFs (rail and support masses; the bridge modes and vehicles not counted).
     pub track_dofs: usize,
     /// Largest rail displacement under a wheel \[m\].
@@ -362,6 +364,7 @@ pub fn simulate_full(
             let m = sim.track_maxima()?;
             Some(TrackSummaryJson {
                 model,
+                rail_beam: sim.track_model()?.rail().beam().name(),
                 track_dofs: sim.track_model()?.n_track_dofs(),
                 max_rail_displacement: m.rail_displacement,
                 max_pad_force: m.pad_force,
@@ -444,8 +447,9 @@ pub fn print_summary(s: &Summary) {
     );
     if let Some(t) = &s.track {
         println!(
-            "  track ({}, {} DOFs): max rail displacement under a wheel {:.4e} m, max pad force {:.1} N, max ballast force {:.1} N, max |rail − bridge| at the output point {:.4e} m",
+            "  track ({}, {} rail, {} DOFs): max rail displacement under a wheel {:.4e} m, max pad force {:.1} N, max ballast force {:.1} N, max |rail − bridge| at the output point {:.4e} m",
             t.model,
+            t.rail_beam,
             t.track_dofs,
             t.max_rail_displacement,
             t.max_pad_force,

@@ -102,9 +102,11 @@ pub(crate) fn combine(parts: &[(f64, &SymmetricEntries)]) -> Vec<Triplet<usize, 
 /// A sparse symmetric positive-definite matrix factorised once as PᵀLLᵀP (faer's simplicial
 /// sparse Cholesky with an AMD ordering P). Besides the full solve it offers the two triangular
 /// halves: with y = L⁻¹P b and z = L⁻¹P r, bᵀA⁻¹r = yᵀz and bᵀA⁻¹b = yᵀy, and A⁻¹(r + F b)
-/// = PᵀL⁻ᵀ(z + F y). On a track L⁻¹Pb fills in from the contact's position to the end of the
-/// ordering, so this split costs about as much as a second solve (measured in `bench beam`); it
-/// is offered for the coupling's bookkeeping, not as a shortcut. No allocation per solve.
+/// = PᵀL⁻ᵀ(z + F y). With the AMD ordering L⁻¹Pb of a track fills in from the contact's
+/// position to the end of the ordering, so this split costs about as much as a second solve
+/// (measured in `bench beam`); with a nested-dissection ordering
+/// ([`Self::factorise_entries`]) it is non-zero only on the elimination-tree paths from b's
+/// entries, which [`Self::forward_sparse_reach`] sweeps alone. No allocation per solve.
 pub struct SparseCholesky {
     n: usize,
     /// Forward permutation: (P r)\[i\] = r\[perm\[i\]\]; `None` = identity.
