@@ -307,18 +307,19 @@ fn flange_root_contact_matches_contact_s_reference_solution() {
 /// wheel profile's height at the patch's contact reference location, of the right wheel
 /// (`mbench_a22_right.ref_out`) minus that of the left (`mbench_a22_left.ref_out`), and the
 /// left wheel's contact position `YCP(W)` (mirrored: s = −YCP(W)). CONTACT's values are
-/// elastic (10 kN per wheel; the approach, 0.02 … 0.03 mm at both wheels, shifts both
-/// heights alike and cancels in the difference to a few µm), on the benchmark's tabulated
-/// profiles and with the yawed wheelset; here the rigid contact points of the analytic
-/// profiles with the equilibrium roll. Compared at 1.0 … 6.0 mm (tread, flange root): at
-/// 0.5 mm the right wheel's two rigid candidates (s ≈ −6 and −7.4 mm) differ in gap by less
-/// than the elastic approach, CONTACT's patch covers both and its reference lies between
-/// them (Δr 0.397 mm against 0.531 mm here); from 6.5 mm on the right patch is on the flange
-/// and its reference lies 17 mm ahead of the axle (yaw), so its height is not the rolling
-/// radius. Measured: Δr −4.2 … +4.8 % (−3.0 % at 3 mm: 0.9587 against 0.9887 mm; the
-/// largest at 4.5 mm, −4.2 %, and at 5.0 mm, +4.8 %, where CONTACT's right patch covers the
-/// tread and the flange root), the left contact within 0.004 … 0.26 mm of CONTACT's;
-/// asserted within 6 % and 0.5 mm (CONTACT's patches are 5 … 9 mm wide across the track).
+/// elastic (10 kN per wheel: the approach, 0.019 … 0.029 mm, lowers each height by about
+/// itself, and the two wheels' approaches differ by at most 0.007 mm here), on the
+/// benchmark's tabulated profiles and with the yawed wheelset; here the rigid contact points
+/// of the analytic profiles with the equilibrium roll. Compared at 1.0 … 6.0 mm (tread,
+/// flange root). Not at 0.5 mm: next to the centred position's two candidates 8.5 µm apart,
+/// the rigid contact of the right wheel has jumped to s = −8.20 mm while CONTACT's patch has
+/// its reference at −6.01 mm (Δr 0.531 mm here against 0.397). Not from 6.5 mm on: the right
+/// patch is on the flange, its reference 17 mm ahead of the axle (yaw), and its height is
+/// not the rolling radius. Measured: Δr −4.2 … +4.8 % (3 mm: 0.9587 against 0.9887 mm,
+/// −3.0 %; the largest at 4.5 mm, −4.2 %, and at 5.0 mm, +4.8 %, where CONTACT's right
+/// patch covers the tread and the flange root), the left contact within 0.004 … 0.26 mm of
+/// CONTACT's. Asserted within 6 % and 0.5 mm: the profiles differ (tabulated and yawed
+/// there), and an elastic patch several mm wide has its reference away from the rigid point.
 #[test]
 fn rolling_radius_difference_matches_contact_s_reference_solution() {
     let ws = standard(1.0 / 40.0);
