@@ -153,8 +153,15 @@ fn refusals_name_the_key() {
     let base = example();
     let cases = [
         (
+            base.replace("[coupling]", "[coupling]").replace(
+                "[integrator]",
+                "[coupling]\nsolver = \"picard\"\n\n[integrator]",
+            ),
+            "`coupling.solver` = \"picard\"",
+        ),
+        (
             base.replace("model = \"hertz\"", "model = \"rigid\""),
-            "`contact.model` = \"rigid\"",
+            "`integrator.method` = \"newmark\": the rigid contact on [track] needs a method with numerical dissipation",
         ),
         (
             base.replace("method = \"newmark\"", "method = \"backward_euler\""),
