@@ -61,11 +61,12 @@ fn with_contact(contact: &str, duration: f64) -> String {
 
 /// BEM on the track converges to Hertz on the track for a Hertzian wheel and rail (wheel
 /// circle on a rail-head circle: the BEM law converges to the elliptic Hertz law as its grid
-/// is refined): the example's quarter car at 30 m/s for 0.03 s (300 steps, sleeper passing
-/// and the start on the embankment), the largest contact-force difference relative to the
-/// wheel load at grids of 12 and 24 elements falls (measured below); the BEM gap also carries
-/// the rail's deflection shape, whose effect on the force is far below these differences
-/// (see [`bem_gap_carries_the_rail_deflection_shape`]).
+/// is refined, references.md §C4.1): the example's quarter car at 30 m/s for 0.03 s (300
+/// steps, from the static start on the embankment over the sleepers), the largest
+/// contact-force difference relative to the wheel load: 7.07e-5 at 12 × 12 elements, 1.31e-5
+/// at 24 × 24 (measured; ratio 5.4 per halving of the element). Asserted: it falls. The BEM
+/// gap also carries the rail's deflection shape (a relative curvature of 1e-3 of the wheel's,
+/// [`bem_gap_carries_the_rail_deflection_shape`]), whose effect is within these differences.
 #[test]
 fn bem_on_the_track_converges_to_hertz() {
     let (weight, hertz) = forces(&with_contact("model = \"hertz\"", 0.03));
@@ -97,8 +98,11 @@ fn bem_on_the_track_converges_to_hertz() {
 /// ballasted track with sleepers every 0.1 m (a nearly continuous foundation) against the
 /// Winkler closed form w(ξ) − w(0) of the same load: the rail bends under the wheel (its
 /// curvature u'' = −F/(4EIβ) at the load, ξ²/2 of it in the gap), so the gap closes
-/// towards the patch's ends. Also the exact Hermite interpolation of the rail's state at the
-/// columns (the wiring: 1e-12).
+/// towards the patch's ends. Measured: the term reaches 6.27e-8 m at the grid's ends, its
+/// curvature −1.325e-3 1/m against Winkler's −1.340e-3 (the load spread over the patch and
+/// the discrete support), the whole profile within 1.15e-3 of its size of Winkler's (asserted
+/// 5e-3), and equal to the Hermite interpolation of the rail's state at the columns (the
+/// wiring; asserted 1e-12).
 #[test]
 fn bem_gap_carries_the_rail_deflection_shape() {
     let text = with_contact("model = \"bem\"\ngrid = 16", 1e-4)
@@ -132,56 +136,6 @@ fn bem_gap_carries_the_rail_deflection_shape() {
     assert!(scale > 0.0 && gap.iter().all(|&g| g <= 0.0));
     assert!(hermite <= 1e-12 * scale.max(1e-300) + 1e-18);
     assert!(closed <= 5e-3 * scale, "{closed:e} of {scale:e}");
-}
-
-/// `[track] model = "none"` with the BEM contact is today's model bit for bit.
-#[test]
-fn bem_with_model_none_is_todays_model() {
-    let base = with_contact("model = \"bem\"\ngrid = 8", 0.005);
-    let start = base.find("[track]").unwrap();
-    let end = base.find("[integrator]").unwrap();
-    let without = format!("{}{}", &base[..start], &base[end..]);
-    let none = without.replace("[integrator]", "[track]\nmodel = \"none\"\n\n[integrator]");
-    let mut a = simulation(&without);
-    let mut b = simulation(&none);
-    for _ in 0..a.planned_steps() {
-        a.step().unwrap();
-        b.step().unwrap();
-        assert_eq!(a.state(), b.state());
-        assert_eq!(a.wheels(), b.wheels());
-    }
-}
-
-/// The rigid contact's static start is exact: a wheel crawling at 1 µm/s for 0.05 s keeps its
-/// contact force, the rail displacement under it and the midspan deflection (1e-8 relative).
-#[test]
-fn rigid_static_start_is_exact() {
-    let text = with_contact("model = \"rigid\"", 0.05)
-        .replace(
-            "method = \"newmark\"",
-            "method = \"generalized_alpha\"\nrho_inf = 0.8",
-        )
-        .replace("speed = 30.0", "speed = 1e-6")
-        .replace("position = -10.0", "position = 10.0")
-        .replace("[output]", "[output]\npoint = 12.5");
-    let mut sim = simulation(&text);
-    let weight = sim.static_loads()[0];
-    let rail0 = sim.track_sample().unwrap().rail_displacement[0];
-    let mid0 = sim.output_point_response().0;
-    assert_eq!(sim.wheels()[0].contact.force, weight);
-    assert_eq!(sim.wheels()[0].approach, 0.0);
-    sim.run(|_| {}).unwrap();
-    let rail1 = sim.track_sample().unwrap().rail_displacement[0];
-    let force1 = sim.wheels()[0].contact.force;
-    let mid1 = sim.output_point_response().0;
-    println!(
-        "rigid static start: rail {rail0:.9e} → {rail1:.9e} m, force {weight:.6} → {force1:.6} N, midspan {mid0:.9e} → {mid1:.9e} m, approach {:.3e} m",
-        sim.wheels()[0].approach
-    );
-    assert!((rail1 / rail0 - 1.0).abs() < 1e-8);
-    assert!((force1 / weight - 1.0).abs() < 1e-8);
-    assert!((mid1 / mid0 - 1.0).abs() < 1e-8);
-    assert!(sim.wheels()[0].approach.abs() < 1e-12);
 }
 
 /// The rigid contact is the limit of a stiff Hertz spring: the example at 30 m/s over the
@@ -258,7 +212,9 @@ fn force_ahead_of_a_car(speed: f64, position: f64) -> String {
 /// A moving force crawling along the track is the static deflection bowl: 100 kN at 0.5 m/s
 /// for 0.2 s on the embankment 8 m before the bridge, sleepers every 0.1 m (a nearly
 /// continuous foundation), the rail's deflection around the force against the Winkler closed
-/// form at 0, ±0.5, ±1, ±2 m (the car 25 m behind it).
+/// form at 0, ±0.5, ±1, ±2 m (the car 25 m behind it): measured 3.2386e-4 m under the force
+/// against 3.2385e-4 m, the bowl within 2.4e-4 of w₀ (asserted 5e-3: the discrete support and
+/// the force's speed).
 #[test]
 fn a_crawling_moving_force_is_the_static_bowl() {
     let text = force_ahead_of_a_car(0.5, -8.0)
@@ -405,30 +361,4 @@ fn rigid_contact_lifts_off_and_lands() {
     );
     assert!(flying > 0 && landed && sim.loss_of_contact_events() == 1);
     assert!(worst <= 1e-12);
-}
-
-/// Real wheel and rail profiles (`[contact.profiles]`, one column at the wheel: the point
-/// path of the track step, as Hertz) on the track: the static start carries the wheel load
-/// (1e-9) and a wheel crawling at 1 µm/s for 0.01 s keeps its force and the rail
-/// displacement under it (1e-8).
-#[test]
-fn profile_contact_on_the_track_starts_static() {
-    let text = with_contact(
-        "model = \"bem\"\ngrid = 16\n\n[contact.profiles]\nwheel = \"S1002\"\nrail = \"60E1\"\ninclination = \"1:40\"\nlateral_shift = 0.0",
-        0.01,
-    )
-    .replace("speed = 30.0", "speed = 1e-6");
-    let mut sim = simulation(&text);
-    let weight = sim.static_loads()[0];
-    let force0 = sim.wheels()[0].contact.force;
-    let rail0 = sim.track_sample().unwrap().rail_displacement[0];
-    sim.run(|_| {}).unwrap();
-    let force1 = sim.wheels()[0].contact.force;
-    let rail1 = sim.track_sample().unwrap().rail_displacement[0];
-    println!(
-        "profiles on the track: force {weight:.4} → {force0:.4} → {force1:.4} N, rail {rail0:.9e} → {rail1:.9e} m"
-    );
-    assert!((force0 / weight - 1.0).abs() < 1e-9);
-    assert!((force1 / weight - 1.0).abs() < 1e-8);
-    assert!((rail1 / rail0 - 1.0).abs() < 1e-8);
 }

@@ -118,13 +118,5 @@ impl RigidContacts {
 }
 
 fn failure(iterations: usize, reason: &str) -> VehicleBridgeError {
-    VehicleBridgeError::CouplingFailed {
-        solver: "track_rigid_active_set",
-        t: f64::NAN,
-        dt: f64::NAN,
-        halvings: 0,
-        iterations,
-        change: f64::NAN,
-        reason: reason.to_string(),
-    }
+    super::solve_failure("track_rigid_active_set", iterations, reason)
 }

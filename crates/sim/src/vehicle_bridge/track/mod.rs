@@ -30,10 +30,19 @@
 //! backward sweep of the factor, k sparse forward sweeps and the sparse products of the
 //! step load.
 //!
+//! # Contact models and moving forces
+//! Hertz and the real-profile law (one column at the wheel) take the point path above; the
+//! boundary-element grid (module `patch`) adds the rail's deflection shape under the patch to
+//! its gap and loads the rail where the columns carry the force, solved on the contact DOFs'
+//! Woodbury system; the rigid contact (module `constraint`) is the complementarity problem of
+//! δ = δ₀ − S F. Moving forces load the rail through b(x_p + c t) (module `moving`).
+//!
 //! # Start
-//! The static solution of the track and bridge under the static wheel loads at the start
-//! positions (`K u = Σ_k W_k b_k`), every wheel at its static approach above the deflected
-//! rail, at rest relative to it (velocities from the irregularity slope as without the track).
+//! The static solution of the track and bridge under the static wheel loads (and moving
+//! forces) at the start positions (`K u = Σ_k W_k b_k`), every wheel at its static approach
+//! above the deflected rail (a BEM wheel with its patch's load distribution and column gaps),
+//! velocities from the irregularity slope as without the track; a rigid wheel also moves with
+//! the static rail's slope under it, c u'(x_k).
 
 mod constraint;
 mod moving;
@@ -202,9 +211,10 @@ fn merged(mut entries: Vec<(usize, usize, f64)>) -> Vec<(usize, usize, f64)> {
 
 impl Simulation {
     /// [`Simulation::with_vehicles`] with the track of `spec` between the wheels and the
-    /// bridge (module [`track`](self)). Needs the Hertz contact, a method of the Newmark /
-    /// HHT / generalized-α family, no moving forces, and a track long enough for every wheel
-    /// over the whole run; an error names the key otherwise.
+    /// bridge (module [`track`](self)). Needs a method of the Newmark / HHT / generalized-α
+    /// family (with numerical dissipation for the rigid contact), the capacitance Newton
+    /// coupling, and a track long enough for every wheel over the whole run; an error names
+    /// the key otherwise.
     pub fn with_track(
         scenario: super::Scenario,
         layouts: Vec<super::VehicleLayout>,
@@ -401,9 +411,7 @@ impl TrackLayer {
                         approaches[k] - (q_sim[sim.wheel_dof[k]] + sc.irregularity.height(x))
                     })
                     .collect();
-                for k in 0..nw {
-                    sim.work.delta[k] = approaches[k];
-                }
+                sim.work.delta[..nw].copy_from_slice(&approaches);
                 (u, shift)
             }
             _ => (
@@ -585,6 +593,19 @@ fn nested_dissection(track: &Track, n: usize) -> Vec<usize> {
     dissect(0, nodes, &group, &mut order);
     order.extend(n_track..n_track + track.n_modes());
     order
+}
+
+/// The failure of a contact solve `solver` after `iterations` (the step fills in its time).
+fn solve_failure(solver: &'static str, iterations: usize, reason: &str) -> VehicleBridgeError {
+    VehicleBridgeError::CouplingFailed {
+        solver,
+        t: f64::NAN,
+        dt: f64::NAN,
+        halvings: 0,
+        iterations,
+        change: f64::NAN,
+        reason: reason.to_string(),
+    }
 }
 
 /// A track-model error as an input error of the `[track]` table (`track.<name>`).

@@ -100,6 +100,8 @@ pub(super) struct PatchContacts {
     cap: Vec<f64>,
     /// Newton's work space (taken out while the iteration runs).
     newton: Option<PatchNewton>,
+    /// The half-space solver's iterations over the evaluations of the last solve.
+    law_iterations: usize,
     /// The accepted step's nodal contact forces −f on the slots' DOFs (the old load of the
     /// next step).
     old_load: Vec<(usize, f64)>,
@@ -151,6 +153,7 @@ impl PatchContacts {
             x: Vec::new(),
             delta: vec![0.0; k],
             cap: vec![0.0; k * k],
+            law_iterations: 0,
             newton: Some(PatchNewton {
                 residual: vec![0.0; k],
                 trial_residual: vec![0.0; k],
@@ -330,6 +333,7 @@ impl PatchContacts {
             outputs[k] = law
                 .evaluate(self.delta[k], &self.gap[k], &mut self.column_force[k], true)
                 .map_err(wheel_error(k))?;
+            self.law_iterations += outputs[k].iterations;
             residual[k] = forces[k] - outputs[k].force;
             worst = worst.max(residual[k].abs());
         }
@@ -389,6 +393,7 @@ impl PatchContacts {
         max_iter: usize,
     ) -> Result<usize, VehicleBridgeError> {
         let k = forces.len();
+        self.law_iterations = 0;
         self.directions();
         let mut residual = self.evaluate(contacts, forces, &mut nw.residual, outputs)?;
         for it in 1..=max_iter {
@@ -560,15 +565,7 @@ impl PatchContacts {
 }
 
 fn failure(iterations: usize, reason: &str) -> VehicleBridgeError {
-    VehicleBridgeError::CouplingFailed {
-        solver: "track_patch_newton",
-        t: f64::NAN,
-        dt: f64::NAN,
-        halvings: 0,
-        iterations,
-        change: f64::NAN,
-        reason: reason.to_string(),
-    }
+    super::solve_failure("track_patch_newton", iterations, reason)
 }
 
 impl Simulation {
@@ -616,6 +613,7 @@ impl Simulation {
             tol,
             self.scenario.coupling.max_iter,
         );
+        self.stats.contact_iterations += patch.law_iterations;
         if solved.is_ok() {
             patch.apply(&forces, s, &mut l.r);
             for k in 0..nw {

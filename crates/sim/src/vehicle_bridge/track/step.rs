@@ -400,10 +400,7 @@ impl Simulation {
                 body_acceleration: body.map_or(0.0, |ib| a[ib]),
                 wheel_acceleration: a[iw],
                 approach: delta,
-                contact: LawOutput {
-                    iterations: 0,
-                    ..contact
-                },
+                contact,
             };
             layer.sample.rail_displacement[k] = rail;
             layer.maxima.rail_displacement = layer.maxima.rail_displacement.max(rail);
