@@ -397,12 +397,14 @@ impl TrackLayer {
         let mut q_sim = sim.stepper.q().to_vec();
         let (u_track, shift) = match (patch.as_mut(), base) {
             (Some(patch), Some(base)) => {
+                let wheel_dofs: Vec<usize> = sim.wheel_dof.iter().map(|&d| offset + d).collect();
                 let (u, approaches) = patch.static_start(
                     &track,
                     &mut sim.contacts,
                     &positions,
                     &sim.static_loads,
                     &base,
+                    &wheel_dofs,
                     &mut sim.work.outputs,
                 )?;
                 let shift: Vec<f64> = (0..nw)

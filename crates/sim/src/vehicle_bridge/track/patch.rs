@@ -481,7 +481,10 @@ impl PatchContacts {
     /// The static start (module documentation): the static solution `u` of the track under
     /// `base` (the moving forces) and the wheel loads `loads` at track coordinates `x`
     /// distributed as the patches carry them, and each wheel's static approach on it.
-    /// Returns u and the approaches; leaves the laws' outputs in `outputs`.
+    /// Returns u and the approaches; leaves the laws' outputs in `outputs` and the static
+    /// contact load (wheels' DOFs `wheel_dofs` in the coupled system) as the first step's old
+    /// load.
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn static_start(
         &mut self,
         track: &Track,
@@ -489,6 +492,7 @@ impl PatchContacts {
         x: &[f64],
         loads: &[f64],
         base: &[f64],
+        wheel_dofs: &[usize],
         outputs: &mut [LawOutput],
     ) -> Result<(Vec<f64>, Vec<f64>), VehicleBridgeError> {
         let k = loads.len();
@@ -554,6 +558,18 @@ impl PatchContacts {
                 }
             }
             if self.adopt_shares() <= STATIC_SHARE_TOL {
+                // The static contact load, the old load of the first step.
+                self.old_load.clear();
+                for c in 0..k {
+                    self.old_load.push((wheel_dofs[c], -loads[c]));
+                    for (i, &om) in self.share[c].iter().enumerate() {
+                        let p = point(x[c] + self.xi[c][i])?;
+                        for a in 0..4 {
+                            self.old_load
+                                .push((p.dofs[a], loads[c] * om * p.weights[a]));
+                        }
+                    }
+                }
                 return Ok((u, approaches));
             }
         }
