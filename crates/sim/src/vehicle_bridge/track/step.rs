@@ -9,6 +9,7 @@ use super::super::contact::wheel_error;
 use super::super::error::invalid;
 use super::super::{Simulation, VehicleBridgeError, WheelSample};
 use super::TrackLayer;
+use super::moving::add_moving_loads;
 
 /// Newton's method on `F_k = F_law,k(δ₀_k − (S F)_k)` (S: the k × k capacitance matrix,
 /// row-major): the Jacobian of `G(F) = F − F_law(δ₀ − S F)` is `I + diag(k_c) S`. Each
@@ -218,24 +219,100 @@ impl Simulation {
         // h = α_m M a + α_f (C v + K q).
         l.r.copy_from_slice(&l.gravity);
         let nw = self.scenario.wheels.len();
-        for k in 0..nw {
-            let f_old = af * l.forces[k];
-            if f_old != 0.0 {
-                let pt = &l.points[k];
-                for a in 0..4 {
-                    l.r[pt.dofs[a]] += f_old * pt.weights[a];
+        if let Some(patch) = &l.patch {
+            patch.add_old_load(af, &mut l.r);
+        } else {
+            for k in 0..nw {
+                let f_old = af * l.forces[k];
+                if f_old != 0.0 {
+                    let pt = &l.points[k];
+                    for a in 0..4 {
+                        l.r[pt.dofs[a]] += f_old * pt.weights[a];
+                    }
+                    l.r[l.offset + self.wheel_dof[k]] -= f_old;
                 }
-                l.r[l.offset + self.wheel_dof[k]] -= f_old;
             }
         }
+        let t_new = self.t() + dt;
+        add_moving_loads(&l.track, &self.scenario, self.t(), af, &mut l.r)?;
+        add_moving_loads(&l.track, &self.scenario, t_new, s, &mut l.r)?;
         sparse_mul_add(l.mass.as_ref(), 1.0, &l.tmp, &mut l.r);
         sparse_mul_add(l.damping.as_ref(), 1.0, &l.tmp_c, &mut l.r);
         if af != 0.0 {
             sparse_mul_add(l.stiffness.as_ref(), -af, &l.q, &mut l.r);
         }
-        // z = L⁻¹P r; y_k = L⁻¹P v_k, v_k = e_k − b_k.
+        // z = L⁻¹P r; the contact forces; z ← z − s L⁻¹P Σ_k F_k v_k.
         l.factor.forward(&mut l.r);
-        let t_new = self.t() + dt;
+        let solved = if l.patch.is_some() {
+            self.patch_contact(l, t_new)
+        } else {
+            self.point_contact(l, t_new)
+        };
+        let iterations = solved.map_err(|e| match e {
+            VehicleBridgeError::CouplingFailed {
+                solver,
+                iterations,
+                change,
+                reason,
+                ..
+            } => VehicleBridgeError::CouplingFailed {
+                solver,
+                t: self.t(),
+                dt,
+                halvings: 0,
+                iterations,
+                change,
+                reason,
+            },
+            other => other,
+        })?;
+        l.factor.backward(&mut l.r);
+        {
+            let inv_cqa = 1.0 / c_qa;
+            let (x, qp, vp) = (&l.r[..n], &l.q_pred[..n], &l.v_pred[..n]);
+            let (q, v, a) = (&mut l.q[..n], &mut l.v[..n], &mut l.a[..n]);
+            for i in 0..n {
+                let a_new = (x[i] - qp[i]) * inv_cqa;
+                v[i] = vp[i] + c_va * a_new;
+                a[i] = a_new;
+                q[i] = x[i];
+            }
+        }
+        // The simulation's DOFs to its stepper (which holds the reported state).
+        let o = l.offset;
+        self.stepper.restart_with_acceleration(
+            &mut self.structure,
+            t_new,
+            &l.q[o..],
+            &l.v[o..],
+            &l.a[o..],
+        )?;
+        let stats = &mut self.stats;
+        stats.steps += 1;
+        stats.iterations += iterations;
+        stats.max_iterations = stats.max_iterations.max(iterations);
+        for k in 0..nw {
+            let touching = l.forces[k] > 0.0;
+            if self.in_contact[k] && !touching {
+                self.loss_events += 1;
+                self.wheel_loss_events[k] += 1;
+            }
+            self.in_contact[k] = touching;
+            self.forces[k] = l.forces[k];
+        }
+        Ok(())
+    }
+
+    /// The point contacts' forces of a step (Hertz, the profile law, the rigid constraint):
+    /// y_k = L⁻¹P v_k (v_k = e_k − b_k), δ₀ and S, the forces, and z ← z − s Σ_k F_k y_k in
+    /// `l.r`. Returns the iterations.
+    fn point_contact(
+        &mut self,
+        l: &mut TrackLayer,
+        t_new: f64,
+    ) -> Result<usize, VehicleBridgeError> {
+        let s = 1.0 - l.params.alpha_f;
+        let nw = self.scenario.wheels.len();
         l.newton.resize(nw);
         let mut delta0 = std::mem::take(&mut l.newton.delta0);
         let mut cap = std::mem::take(&mut l.newton.cap);
@@ -265,34 +342,22 @@ impl Simulation {
         }
         let tol = self.scenario.coupling.tol * self.force_scale;
         forces.copy_from_slice(&l.forces);
-        let solved = contact_forces(
-            &mut self.contacts,
-            &delta0,
-            &cap,
-            &mut forces,
-            &mut self.work.outputs,
-            tol,
-            self.scenario.coupling.max_iter,
-            &mut l.newton,
-        );
-        let (iterations, _change) = solved.map_err(|e| match e {
-            VehicleBridgeError::CouplingFailed {
-                solver,
-                iterations,
-                change,
-                reason,
-                ..
-            } => VehicleBridgeError::CouplingFailed {
-                solver,
-                t: self.t(),
-                dt,
-                halvings: 0,
-                iterations,
-                change,
-                reason,
-            },
-            other => other,
-        })?;
+        let solved = if let Some(rigid) = l.rigid.as_mut() {
+            rigid.forces(&delta0, &cap, &mut forces, &mut self.work.outputs, tol)
+        } else {
+            contact_forces(
+                &mut self.contacts,
+                &delta0,
+                &cap,
+                &mut forces,
+                &mut self.work.outputs,
+                tol,
+                self.scenario.coupling.max_iter,
+                &mut l.newton,
+            )
+            .map(|(iterations, _change)| iterations)
+        };
+        let iterations = solved?;
         for k in 0..nw {
             let f = s * forces[k];
             for (z, y) in l.r.iter_mut().zip(&l.y[k]) {
@@ -301,46 +366,12 @@ impl Simulation {
             self.work.delta[k] =
                 delta0[k] - (0..nw).map(|j| cap[k * nw + j] * forces[j]).sum::<f64>();
         }
-        l.factor.backward(&mut l.r);
-        {
-            let inv_cqa = 1.0 / c_qa;
-            let (x, qp, vp) = (&l.r[..n], &l.q_pred[..n], &l.v_pred[..n]);
-            let (q, v, a) = (&mut l.q[..n], &mut l.v[..n], &mut l.a[..n]);
-            for i in 0..n {
-                let a_new = (x[i] - qp[i]) * inv_cqa;
-                v[i] = vp[i] + c_va * a_new;
-                a[i] = a_new;
-                q[i] = x[i];
-            }
-        }
         l.forces.copy_from_slice(&forces);
         // The step's vectors back into the work space (no allocation in the next step).
         l.newton.delta0 = delta0;
         l.newton.cap = cap;
         l.newton.forces = forces;
-        // The simulation's DOFs to its stepper (which holds the reported state).
-        let o = l.offset;
-        self.stepper.restart_with_acceleration(
-            &mut self.structure,
-            t_new,
-            &l.q[o..],
-            &l.v[o..],
-            &l.a[o..],
-        )?;
-        let stats = &mut self.stats;
-        stats.steps += 1;
-        stats.iterations += iterations;
-        stats.max_iterations = stats.max_iterations.max(iterations);
-        for k in 0..nw {
-            let touching = l.forces[k] > 0.0;
-            if self.in_contact[k] && !touching {
-                self.loss_events += 1;
-                self.wheel_loss_events[k] += 1;
-            }
-            self.in_contact[k] = touching;
-            self.forces[k] = l.forces[k];
-        }
-        Ok(())
+        Ok(iterations)
     }
 
     /// The wheel samples and the track sample at the current state (and the running maxima).
@@ -357,17 +388,8 @@ impl Simulation {
             let iw = self.wheel_dof[k];
             let r = self.scenario.irregularity.height(x);
             let delta = q[iw] - rail + r;
-            let contact = if t == 0.0 {
-                // The static start: the law at the static approach.
-                let LawModel::Law(law) = &mut self.contacts[k] else {
-                    unreachable!("compliant laws only")
-                };
-                let mut cf = [0.0];
-                law.evaluate(delta, &[0.0], &mut cf, true)
-                    .map_err(wheel_error(k))?
-            } else {
-                self.work.outputs[k]
-            };
+            // The law's output of the last step (of the static start at t = 0).
+            let contact = self.work.outputs[k];
             let body = self.wheel_vehicle[k]
                 .map(|v| self.vehicles[v].body_over(k - self.vehicles[v].first_wheel))
                 .or(self.body_dof[k]);
@@ -378,10 +400,7 @@ impl Simulation {
                 body_acceleration: body.map_or(0.0, |ib| a[ib]),
                 wheel_acceleration: a[iw],
                 approach: delta,
-                contact: LawOutput {
-                    iterations: 0,
-                    ..contact
-                },
+                contact,
             };
             layer.sample.rail_displacement[k] = rail;
             layer.maxima.rail_displacement = layer.maxima.rail_displacement.max(rail);
@@ -433,7 +452,7 @@ impl Simulation {
 
 /// aᵀb with four partial sums (independent chains of additions), over the entries from the
 /// first non-zero of `a` on (y = L⁻¹Pv is zero before the first non-zero of Pv).
-fn dot(a: &[f64], b: &[f64]) -> f64 {
+pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
     let start = a.iter().position(|&x| x != 0.0).unwrap_or(a.len());
     let (a, b) = (&a[start..], &b[start.min(b.len())..]);
     let n = a.len().min(b.len());
