@@ -414,3 +414,38 @@ fn bogie_vehicle_on_bem_follows_hertz() {
     );
     assert!(diffs[1] < diffs[0] && diffs[1] < 1e-4, "{diffs:?}");
 }
+
+/// Works with the defaults: without an `[integrator] method` the rigid contact on the track
+/// gets the generalized-α method (`config::vehicle_bridge::DEFAULT_METHOD_RIGID_TRACK`, its
+/// default ρ∞), and the run over the dip of `rigid_contact_lifts_off_and_lands` leaves and
+/// regains the rail once without penetration; an explicit `method = "newmark"` (the trapezoidal
+/// rule) is refused naming `integrator.method`. Hertz keeps the general default (Newmark).
+#[test]
+fn rigid_contact_on_the_track_runs_with_the_default_method() {
+    let text = with_contact("model = \"rigid\"", 0.12)
+        .replace("speed = 30.0", "speed = 80.0")
+        .replace(
+            "[integrator]",
+            "[irregularity]\nkind = \"dip\"\nposition = -5.0\nlength = 0.6\ndepth = 1e-3\n\n[integrator]",
+        );
+    let defaulted = text.replace("method = \"newmark\"\n", "");
+    assert_eq!(
+        parse(&defaulted).unwrap().scenario.integrator.name(),
+        "generalized_alpha"
+    );
+    let mut sim = simulation(&defaulted);
+    for _ in 0..sim.planned_steps() {
+        sim.step().unwrap();
+        let w = &sim.wheels()[0];
+        assert!(w.contact.force >= 0.0 && w.approach <= 1e-12);
+    }
+    assert_eq!(sim.loss_of_contact_events(), 1);
+    let c = parse(&text).unwrap();
+    let e = Simulation::with_track(c.scenario, c.vehicles, c.track.unwrap())
+        .err()
+        .expect("newmark refused")
+        .to_string();
+    assert!(e.contains("integrator.method"), "{e}");
+    let hertz = with_contact("model = \"hertz\"", 0.01).replace("method = \"newmark\"\n", "");
+    assert_eq!(parse(&hertz).unwrap().scenario.integrator.name(), "newmark");
+}
