@@ -142,6 +142,8 @@ pub struct Simulation {
     a_coefficients: (f64, f64, f64),
     stats: SolverStats,
     output_shapes: Vec<f64>,
+    /// `w_j(x_out)/(m_j ω_j²)` of the quasi-static deflection (`None` with a rigid-body mode).
+    quasi_static_weights: Option<Vec<f64>>,
     loss_events: usize,
     /// Loss-of-contact events per wheel.
     wheel_loss_events: Vec<usize>,
