@@ -57,12 +57,14 @@ struct SolveKey {
 
 impl SolveKey {
     fn matches(&self, version: u64, g: &[f64], pattern: &[usize]) -> bool {
+        // One pass over the pattern (indices and ĝ's bits together).
         self.version == version
-            && self.pattern == pattern
+            && self.pattern.len() == pattern.len()
             && pattern
                 .iter()
+                .zip(&self.pattern)
                 .zip(&self.g)
-                .all(|(&i, &bits)| g[i].to_bits() == bits)
+                .all(|((&i, &stored), &bits)| i == stored && g[i].to_bits() == bits)
     }
 
     fn set(&mut self, version: u64, g: &[f64], pattern: &[usize]) {
