@@ -20,8 +20,9 @@ use super::{BlockDiagonal, Singular};
 pub struct CapacitanceWork {
     /// Per wheel: A⁻¹ĝ (n; zero outside `support`).
     ainv_g: Vec<Vec<f64>>,
-    /// Per wheel: where A⁻¹ĝ can be non-zero.
+    /// Per wheel: where A⁻¹ĝ can be non-zero, and A⁻¹ĝ there (in the same order).
     support: Vec<Vec<usize>>,
+    on_support: Vec<Vec<f64>>,
     /// Per wheel: the blocks of A that A⁻¹ĝ touches.
     blocks: Vec<Vec<usize>>,
     /// Per wheel: the key of the stored A⁻¹ĝ (A's version, the pattern and ĝ on it).
@@ -90,12 +91,14 @@ impl CapacitanceWork {
         if self.ainv_g.first().is_some_and(|a| a.len() != n) {
             self.ainv_g.clear();
             self.support.clear();
+            self.on_support.clear();
             self.blocks.clear();
             self.key.clear();
         }
         while self.ainv_g.len() < k {
             self.ainv_g.push(vec![0.0; n]);
             self.support.push(Vec::new());
+            self.on_support.push(Vec::new());
             self.blocks.push(Vec::new());
             self.key.push(SolveKey::default());
         }
@@ -129,6 +132,9 @@ impl CapacitanceWork {
             &mut self.mark,
             self.stamp,
         );
+        let values = &mut self.on_support[wheel];
+        values.clear();
+        values.extend(self.support[wheel].iter().map(|&i| x[i]));
         self.key[wheel].set(a.version(), g, pattern);
     }
 
@@ -336,9 +342,8 @@ pub fn contact_update(
     for c in 0..k {
         let f = s * df[c];
         let wheel = active[c];
-        let ainv_g = &work.ainv_g[wheel];
-        for &i in &work.support[wheel] {
-            x[i] -= f * ainv_g[i];
+        for (&i, g) in work.support[wheel].iter().zip(&work.on_support[wheel]) {
+            x[i] -= f * g;
         }
     }
     Ok(())
