@@ -61,6 +61,8 @@ pub use moving::{
     Axle, ModalIntegrator, MovingLoadResponse, MovingLoadSettings, MovingLoads, StepProgress,
     simulate_moving_loads, simulate_moving_loads_observed,
 };
-pub use passage::{PassagePeaks, PassagePlan, PassageWork, sine_amplitudes, sine_shapes};
+pub use passage::{
+    PassagePeaks, PassagePlan, PassageWork, sine_amplitudes, sine_shape_dot, sine_shapes,
+};
 pub use quadrature::{Quadrature, QuadratureRule};
 pub use sdof::PiecewiseLinearSdof;

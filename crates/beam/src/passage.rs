@@ -334,10 +334,26 @@ pub fn sine_amplitudes<B: ModalBasis + ?Sized>(basis: &B) -> Result<Option<Vec<f
 /// sin((j+1)θ) = 2 cos θ sin(jθ) − sin((j−1)θ) (one `sin_cos`; agrees with the direct
 /// evaluation to a few ulp per mode for the mode counts of a bridge model, tested).
 pub fn sine_shapes(amplitudes: &[f64], length: f64, x: f64, out: &mut [f64]) {
-    let (s1, c) = (std::f64::consts::PI * x / length).sin_cos();
-    let (mut prev, mut cur) = (0.0, s1);
-    for (o, a) in out.iter_mut().zip(amplitudes) {
-        *o = a * cur;
-        (prev, cur) = (cur, 2.0 * c * cur - prev);
+    for (o, w) in out.iter_mut().zip(sine_shape_values(amplitudes, length, x)) {
+        *o = w;
     }
+}
+
+/// `Σ_j weights_j w_j(x)` with the shapes of [`sine_shapes`] (the same recurrence, summed as it
+/// goes: no buffer). The sum runs over the shorter of `amplitudes` and `weights`.
+pub fn sine_shape_dot(amplitudes: &[f64], length: f64, x: f64, weights: &[f64]) -> f64 {
+    sine_shape_values(amplitudes, length, x)
+        .zip(weights)
+        .map(|(w, c)| c * w)
+        .sum()
+}
+
+/// The shapes A_j sin((j+1)θ), θ = πx/L, in mode order, by the recurrence of [`sine_shapes`].
+fn sine_shape_values(amplitudes: &[f64], length: f64, x: f64) -> impl Iterator<Item = f64> + '_ {
+    let (s1, c) = (std::f64::consts::PI * x / length).sin_cos();
+    amplitudes.iter().scan((0.0, s1), move |(prev, cur), a| {
+        let w = a * *cur;
+        (*prev, *cur) = (*cur, 2.0 * c * *cur - *prev);
+        Some(w)
+    })
 }

@@ -358,6 +358,8 @@ pub fn trains() -> Result<()> {
     );
     // One wheel: a quarter car with the Manchester wheelset and a quarter of the car above it.
     let quarter = "type = \"quarter_car\"\nlength = 25.0\nwheel_mass = 1813.0\nbody_mass = 9307.5\nsuspension_stiffness = 4.8e5\nsuspension_damping = 2.0e4\n";
+    // (wheels, µs per step) of each row, for the growth line below the table.
+    let mut rows: Vec<(usize, f64)> = Vec::new();
     for cars in [0usize, 1, 4, 8, 16] {
         let vehicles = if cars == 0 {
             format!("[[train.vehicles]]\n{quarter}")
@@ -379,6 +381,15 @@ pub fn trains() -> Result<()> {
             (4 * cars).max(1),
             1e6 * wall / steps as f64,
             0.1 / wall
+        );
+        rows.push(((4 * cars).max(1), 1e6 * wall / steps as f64));
+    }
+    // Issue #10: µs per step may grow no worse than linearly in the wheels.
+    if let (Some(&(w0, t0)), Some(&(w1, t1))) = (rows.get(1), rows.last()) {
+        println!(
+            "growth {w0} -> {w1} wheels: {:.2}x the µs per step for {:.0}x the wheels (target: at most linear); 32 wheels target <= 5 µs/step (>= 20x real time)",
+            t1 / t0,
+            w1 as f64 / w0 as f64
         );
     }
     // The whole crossing (leading axle at the span's entry until the last wheel has left):

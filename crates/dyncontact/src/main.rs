@@ -204,7 +204,8 @@ enum BenchTarget {
     /// peak force: wall time, steps, f-evaluations.
     Integrators,
     /// The default vehicle-bridge scenario with BEM contact (32 × 32) at every step, Picard
-    /// and quasi-Newton coupling: wall time per step, simulated/wall time, iterations.
+    /// and quasi-Newton coupling: wall time per step, simulated/wall time, iterations; an
+    /// 8-car train with BEM contact at every wheel.
     Coupling,
     /// Tangential contact: steady rolling (Newton–Krylov with the line and the Jacobi
     /// preconditioner, Gauss–Seidel) on 44² … 400² (time, iterations, FFT products), a 41-point

@@ -142,6 +142,8 @@ pub struct Simulation {
     a_coefficients: (f64, f64, f64),
     stats: SolverStats,
     output_shapes: Vec<f64>,
+    /// `w_j(x_out)/(m_j ω_j²)` of the quasi-static deflection (`None` with a rigid-body mode).
+    quasi_static_weights: Option<Vec<f64>>,
     loss_events: usize,
     /// Loss-of-contact events per wheel.
     wheel_loss_events: Vec<usize>,
@@ -214,6 +216,7 @@ struct Work {
 impl Work {
     /// Bridge deflection under wheel k, `w(x_k) = Σ_j q_j w_j(x_k)` \[m\], at the state `x`
     /// (mode shapes of the last [`Simulation::wheel_geometry`]).
+    #[inline]
     fn deflection_under(&self, k: usize, x: &[f64]) -> f64 {
         let shapes = &self.shape_at_wheel[k][..self.span_modes[k]];
         shapes.iter().enumerate().map(|(j, s)| x[j] * s).sum()
@@ -221,6 +224,7 @@ impl Work {
 
     /// The approach of wheel k, `δ_k = z_w − w(x_k) + r(x_k)` \[m\] (module documentation),
     /// at the state `x`; `iw` is the wheel's DOF. The one place δ is computed.
+    #[inline]
     fn approach(&self, k: usize, iw: usize, x: &[f64]) -> f64 {
         x[iw] - self.deflection_under(k, x) + self.r_at_wheel[k]
     }

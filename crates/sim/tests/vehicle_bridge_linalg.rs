@@ -54,13 +54,13 @@ fn rel(a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// For compliant contacts the update solves (A + s Σ k_c ĝ vᵀ) Δx = −R; Sherman–Morrison
-/// (k = 1) and Woodbury (k = 3: the small elimination; k = 20: the blocked LU of larger
-/// groups) must equal the dense solve of that n × n matrix to 1e-12 (condition numbers here
+/// (k = 1) and Woodbury (k = 2, 4, 8: the small elimination with a fixed size; k = 3 with any
+/// size; k = 20: the blocked LU of larger groups) must equal the dense solve of that n × n matrix to 1e-12 (condition numbers here
 /// are below 1e3, so round-off stays near 1e-14).
 #[test]
 fn sherman_morrison_and_woodbury_equal_dense() {
     let mut rng = ChaCha8Rng::seed_from_u64(7);
-    for wheels in [1usize, 3, 20] {
+    for wheels in [1usize, 2, 3, 4, 8, 20] {
         let (a, m) = random_system(&mut rng, wheels);
         let n = a.dimension();
         let s = 0.9;

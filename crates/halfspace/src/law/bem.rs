@@ -72,6 +72,8 @@ pub struct BemLaw {
     options: BemOptions,
     grid: Grid,
     base_gap: Vec<f64>,
+    /// min over each grid column of the base gap.
+    base_column_min: Vec<f64>,
     gap: Vec<f64>,
     pressure: Vec<f64>,
     columns: Vec<f64>,
@@ -142,10 +144,16 @@ impl BemLaw {
             None
         };
         let n = grid.len();
+        let mut base_column_min = vec![f64::INFINITY; grid.nx];
+        for (k, &h) in base_gap.iter().enumerate() {
+            let column = &mut base_column_min[k % grid.nx];
+            *column = column.min(h);
+        }
         Ok(Self {
             solver,
             options,
             grid,
+            base_column_min,
             gap: base_gap.clone(),
             base_gap,
             pressure: vec![0.0; n],
@@ -229,19 +237,33 @@ impl BemLaw {
         &self.options
     }
 
-    fn set_gap(&mut self, column_gap: &[f64]) -> f64 {
+    /// The undeformed gap h_e = h₀_e + c(ξ_i) of every element, for a full solve.
+    fn set_gap(&mut self, column_gap: &[f64]) {
         let nx = self.grid.nx;
-        let mut min_gap = f64::INFINITY;
         if column_gap.is_empty() {
             self.gap.copy_from_slice(&self.base_gap);
-            min_gap = self.gap.iter().copied().fold(min_gap, f64::min);
         } else {
             for (k, (g, b)) in self.gap.iter_mut().zip(&self.base_gap).enumerate() {
                 *g = b + column_gap[k % nx];
-                min_gap = min_gap.min(*g);
             }
         }
-        min_gap
+    }
+
+    /// min_e h_e = min_i (min over column i of h₀ + c(ξ_i)), from the base gap's column
+    /// minima (O(nx): a reused evaluation never forms the gap of every element).
+    fn min_gap(&self, column_gap: &[f64]) -> f64 {
+        if column_gap.is_empty() {
+            return self
+                .base_column_min
+                .iter()
+                .copied()
+                .fold(f64::INFINITY, f64::min);
+        }
+        self.base_column_min
+            .iter()
+            .zip(column_gap)
+            .map(|(b, c)| b + c)
+            .fold(f64::INFINITY, f64::min)
     }
 
     fn memo_hit(&self, delta: f64, column_gap: &[f64], tangent: bool) -> Option<LawOutput> {
@@ -356,7 +378,7 @@ impl ContactLaw for BemLaw {
             column_force.copy_from_slice(&self.column_force[..column_force.len()]);
             return Ok(out);
         }
-        let min_gap = self.set_gap(column_gap);
+        let min_gap = self.min_gap(column_gap);
         self.last_column_gap.clear();
         self.last_column_gap.extend_from_slice(column_gap);
         let separated = if self.options.skip_separated {
@@ -379,6 +401,7 @@ impl ContactLaw for BemLaw {
             self.last = Some((delta, out));
             return Ok(out);
         }
+        self.set_gap(column_gap);
         let reusing = self.reuse.is_some();
         if self.reuse.as_ref().is_some_and(|r| r.model.is_some()) {
             // Start from the latest reused pressure (closer than the last full solve's).

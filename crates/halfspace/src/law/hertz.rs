@@ -13,6 +13,8 @@ pub struct HertzPoint {
     coefficient: f64,
     /// Semi-axes and peak pressure at F = 1 N.
     unit: Hertz,
+    /// C^{1/3}: the F^{1/3} scale of the patch is C^{1/3} δ^{1/2} (no cube root per evaluation).
+    coefficient_cbrt: f64,
     columns: [f64; 1],
     last_force: f64,
 }
@@ -38,6 +40,7 @@ impl HertzPoint {
     fn with_unit(coefficient: f64, unit: Hertz) -> Self {
         Self {
             coefficient,
+            coefficient_cbrt: coefficient.cbrt(),
             unit,
             columns: [0.0],
             last_force: 0.0,
@@ -86,7 +89,9 @@ impl ContactLaw for HertzPoint {
         let force = self.coefficient * delta * root;
         column_force.fill(force);
         self.last_force = force;
-        let (a, b, p0) = self.at_force(force);
+        // at_force(F) with F^{1/3} = C^{1/3} δ^{1/2} (equal to round-off).
+        let s = self.coefficient_cbrt * root;
+        let (a, b, p0) = (self.unit.a * s, self.unit.b * s, self.unit.max_pressure * s);
         Ok(LawOutput {
             force,
             stiffness: 1.5 * self.coefficient * root,

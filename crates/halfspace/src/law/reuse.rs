@@ -105,10 +105,14 @@ pub(super) struct FrozenSet {
     pressure: Vec<f64>,
     /// y_k on C (`active` order).
     y: [Vec<f64>; BASIS],
-    inactive: Vec<usize>,
+    /// The grid columns of the elements off C, by increasing deformed distance.
+    inactive_column: Vec<u32>,
+    /// Their deformed distances e_r (increasing).
     distance: Vec<f64>,
     /// A y_k off C (`inactive` order).
     response_u: [Vec<f64>; BASIS],
+    /// max_j |(A y_k)_j| off C.
+    response_u_max: [f64; BASIS],
     /// Y_k,i.
     column_response: [Vec<f64>; BASIS],
     /// Inverse of the X-weighted Gram matrix of the basis over the columns.
@@ -155,9 +159,16 @@ impl FrozenSet {
         let mut column_response: [Vec<f64>; BASIS] = std::array::from_fn(|_| vec![0.0; nx]);
         let mut response_u: [Vec<f64>; BASIS] = std::array::from_fn(|_| Vec::new());
         let active: Vec<usize> = (0..n).filter(|&e| in_contact[e]).collect();
-        let inactive: Vec<usize> = (0..n)
+        // Off C by increasing distance: an evaluation's entering check stops at the first
+        // element whose distance exceeds the largest possible gap change (`predict`).
+        let mut inactive: Vec<usize> = (0..n)
             .filter(|&e| !in_contact[e] && solution.deformed_distance[e].is_finite())
             .collect();
+        inactive.sort_by(|&a, &b| {
+            solution.deformed_distance[a]
+                .total_cmp(&solution.deformed_distance[b])
+                .then(a.cmp(&b))
+        });
         for k in 0..BASIS {
             solver.solve_on_set(
                 in_contact,
@@ -182,6 +193,8 @@ impl FrozenSet {
                 }
             }
         }
+        let response_u_max =
+            std::array::from_fn(|k| response_u[k].iter().fold(0.0_f64, |m, u| m.max(u.abs())));
         let Some(gram_inverse) = invert3(&gram) else {
             // Fewer than three columns in contact: no model (every evaluation solves).
             return Ok(None);
@@ -214,8 +227,9 @@ impl FrozenSet {
                 .iter()
                 .map(|&e| solution.deformed_distance[e])
                 .collect(),
-            inactive,
+            inactive_column: inactive.iter().map(|&e| (e % nx) as u32).collect(),
             response_u,
+            response_u_max,
             column_response,
             gram_inverse,
             nx,
@@ -262,10 +276,19 @@ impl FrozenSet {
         for (k, ak) in a.iter_mut().enumerate() {
             *ak = (0..BASIS).map(|l| self.gram_inverse[k][l] * rhs[l]).sum();
         }
-        // Entering elements refuse the prediction.
+        // Entering elements refuse the prediction. The predicted distance of an element off
+        // C is e_r − Δg_i + Σ_k a_k (A y_k)_e ≥ e_r − max_i |Δg_i| − Σ_k |a_k| max |A y_k|:
+        // the elements are sorted by e_r, so the check stops at the first one beyond that
+        // bound (no later one can penetrate; the same answer as checking every element).
+        let reach = delta_g.iter().fold(0.0_f64, |m, g| m.max(g.abs()))
+            + (0..BASIS)
+                .map(|k| a[k].abs() * self.response_u_max[k])
+                .sum::<f64>();
         for (j, &d) in self.distance.iter().enumerate() {
-            let e = self.inactive[j];
-            let mut predicted = d - delta_g[e % nx];
+            if d > reach {
+                break;
+            }
+            let mut predicted = d - delta_g[self.inactive_column[j] as usize];
             for (k, ak) in a.iter().enumerate() {
                 predicted += ak * self.response_u[k][j];
             }

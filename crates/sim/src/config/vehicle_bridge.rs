@@ -30,6 +30,11 @@ use crate::vehicle_bridge::{
 
 /// Default structural method.
 pub const DEFAULT_METHOD: &str = "newmark";
+/// Default structural method of a rigid contact on a `[track]`: there the constraint acts on
+/// the step's displacements, which needs numerical dissipation (`Simulation::with_track`
+/// refuses the trapezoidal rule, whose contact force oscillates undamped at 2 Δt there), so
+/// the default is the generalized-α method with its default ρ∞.
+pub const DEFAULT_METHOD_RIGID_TRACK: &str = "generalized_alpha";
 /// Default time step \[s\], the longest default: a compliant contact shortens it to
 /// [`DEFAULT_DT_CONTACT`] / f_c (see [`default_dt`]).
 pub const DEFAULT_DT: f64 = 1e-4;
@@ -310,9 +315,15 @@ pub fn build_in(file: VehicleBridgeFile, base: &Path) -> Result<VehicleBridgeCon
     };
 
     let integ = file.integrator.as_ref();
+    let rigid_on_track = matches!(contact, ContactModel::Rigid)
+        && file.track.as_ref().is_some_and(|t| t.model != "none");
     let method_name = integ
         .and_then(|i| i.method.as_deref())
-        .unwrap_or(DEFAULT_METHOD);
+        .unwrap_or(if rigid_on_track {
+            DEFAULT_METHOD_RIGID_TRACK
+        } else {
+            DEFAULT_METHOD
+        });
     let params = StructuralParameters {
         beta: integ.and_then(|i| i.beta),
         gamma: integ.and_then(|i| i.gamma),

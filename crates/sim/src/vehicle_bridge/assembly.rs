@@ -346,6 +346,7 @@ impl Simulation {
         scenario
             .bridge
             .eval_all(scenario.output_point, Derivative::Shape, &mut output_shapes)?;
+        let quasi_static_weights = Self::quasi_static_weights(&*scenario.bridge, &output_shapes)?;
         let any_rigid = contacts.iter().any(super::contact::is_rigid);
         let rigid = super::rigid::RigidWork::new(any_rigid, nw, m, n);
         let mut sim = Self {
@@ -367,6 +368,7 @@ impl Simulation {
             a_coefficients: (f64::NAN, f64::NAN, f64::NAN),
             stats: SolverStats::default(),
             output_shapes,
+            quasi_static_weights,
             loss_events: 0,
             wheel_loss_events: vec![0; nw],
             static_contact_stiffness: vec![0.0; nw],

@@ -16,20 +16,22 @@ impl Simulation {
         let w = &mut self.work;
         // Mode shapes at x (the sine recurrence on a simply supported uniform span).
         let sine = self.sine.as_deref();
-        let shapes_at = |x: f64, out: &mut [f64]| -> Result<(), VehicleBridgeError> {
+        // Mode shapes at x; false (and zeros) off the span.
+        let shapes_at = |x: f64, out: &mut [f64]| -> Result<bool, VehicleBridgeError> {
             if !(0.0..=length).contains(&x) {
                 out.fill(0.0);
+                return Ok(false);
             } else if let Some(a) = sine {
                 beam::sine_shapes(a, length, x, out);
             } else {
                 basis.eval_all(x, Derivative::Shape, out)?;
             }
-            Ok(())
+            Ok(true)
         };
         for (k, spec) in self.scenario.wheels.iter().enumerate() {
             let x = spec.position + self.scenario.speed * t;
             self.samples[k].position = x;
-            shapes_at(x, &mut w.shape_at_wheel[k])?;
+            let mut inside = shapes_at(x, &mut w.shape_at_wheel[k])?;
             w.r_at_wheel[k] = self.scenario.irregularity.height(x);
             for (i, &xi) in columns(&self.contacts[k]).iter().enumerate() {
                 let xc = x + xi;
@@ -37,16 +39,18 @@ impl Simulation {
                 if xi == 0.0 {
                     out.copy_from_slice(&w.shape_at_wheel[k]);
                 } else {
-                    shapes_at(xc, out)?;
+                    inside |= shapes_at(xc, out)?;
                 }
                 w.r_at_columns[k][i] = self.scenario.irregularity.height(xc);
             }
             // ĝ and v touch the modes only while the wheel or one of its columns is on the
-            // span (off it every mode shape is zero, and so are their mode entries).
-            let on_span = w.shape_at_wheel[k]
-                .iter()
-                .chain(&w.shape_at_columns[k])
-                .any(|&s| s != 0.0);
+            // span (off it every mode shape is zero, and so are their mode entries; the scan
+            // is needed only if a point is within [0, L]).
+            let on_span = inside
+                && w.shape_at_wheel[k]
+                    .iter()
+                    .chain(&w.shape_at_columns[k])
+                    .any(|&s| s != 0.0);
             if !on_span && w.span_modes[k] > 0 {
                 for vector in [
                     &mut w.g_hat[k],

@@ -123,33 +123,52 @@ impl Simulation {
     /// current positions, `Σ_k W_k Σ_j w_j(x_out) w_j(x_k)/(m_j ω_j²)` \[m\] (same modal basis;
     /// `None` if the basis has a rigid-body mode, ω_j = 0).
     pub fn quasi_static_output_deflection(&self) -> Result<Option<f64>, VehicleBridgeError> {
-        let basis = &*self.scenario.bridge;
-        let omegas = basis.circular_frequencies();
-        if omegas.iter().any(|&w| w <= 0.0) {
+        let Some(weights) = self.quasi_static_weights.as_deref() else {
             return Ok(None);
-        }
-        let mut total = 0.0;
-        for (k, sample) in self.samples.iter().enumerate() {
-            let x = sample.position;
-            if !(0.0..=basis.length()).contains(&x) {
-                continue;
+        };
+        let basis = &*self.scenario.bridge;
+        let length = basis.length();
+        // Σ_j w_j(x_out) w_j(x)/(m_j ω_j²) at x on the span (one `sin_cos` on a sine basis).
+        let influence = |x: f64| -> Result<f64, VehicleBridgeError> {
+            if let Some(amplitudes) = self.sine.as_deref() {
+                return Ok(beam::sine_shape_dot(amplitudes, length, x, weights));
             }
-            for j in 0..basis.n_modes() {
-                total += self.static_loads[k] * self.output_shapes[j] * basis.shape(j, x)?
-                    / (basis.modal_mass(j)? * omegas[j] * omegas[j]);
+            let mut sum = 0.0;
+            for (j, c) in weights.iter().enumerate() {
+                sum += c * basis.shape(j, x)?;
+            }
+            Ok(sum)
+        };
+        let mut total = 0.0;
+        for (sample, load) in self.samples.iter().zip(&self.static_loads) {
+            if (0.0..=length).contains(&sample.position) {
+                total += load * influence(sample.position)?;
             }
         }
         for f in &self.scenario.moving_forces {
             let x = f.position + self.scenario.speed * self.t();
-            if !(0.0..=basis.length()).contains(&x) {
-                continue;
-            }
-            for j in 0..basis.n_modes() {
-                total += f.force * self.output_shapes[j] * basis.shape(j, x)?
-                    / (basis.modal_mass(j)? * omegas[j] * omegas[j]);
+            if (0.0..=length).contains(&x) {
+                total += f.force * influence(x)?;
             }
         }
         Ok(Some(total))
+    }
+
+    /// The weights `w_j(x_out)/(m_j ω_j²)` of [`Self::quasi_static_output_deflection`]
+    /// (`None` if the basis has a rigid-body mode, ω_j = 0).
+    pub(super) fn quasi_static_weights(
+        basis: &dyn beam::ModalBasis,
+        output_shapes: &[f64],
+    ) -> Result<Option<Vec<f64>>, VehicleBridgeError> {
+        let omegas = basis.circular_frequencies();
+        if omegas.iter().any(|&w| w <= 0.0) {
+            return Ok(None);
+        }
+        let mut weights = Vec::with_capacity(omegas.len());
+        for (j, (&o, &w)) in omegas.iter().zip(output_shapes).enumerate() {
+            weights.push(w / (basis.modal_mass(j)? * o * o));
+        }
+        Ok(Some(weights))
     }
 
     /// The centreline pressure of wheel `k`'s last contact evaluation (ξ \[m\], p \[Pa\]).

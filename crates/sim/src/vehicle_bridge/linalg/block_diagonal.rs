@@ -87,6 +87,35 @@ fn apply_dense_inverse_with(blk: &DenseBlock, x: &mut [f64], buf: &mut [f64]) {
     }
 }
 
+/// `out_r = Σ_c B_rc x_c` for the row-major m × m matrix `rows` (m = `x.len()`), or with
+/// |B_rc| if `abs`: each row a sum in column order (with a fixed size for a bogie vehicle's
+/// 10 × 10 block, which the compiler unrolls; the same operations in the same order).
+fn rows_times(rows: &[f64], x: &[f64], out: &mut [f64], abs: bool) {
+    match <&[f64; 10]>::try_from(x) {
+        Ok(x) => rows_times_fixed(rows.as_chunks::<10>().0, x, out, abs),
+        Err(_) => {
+            for (o, row) in out.iter_mut().zip(rows.chunks_exact(x.len())) {
+                *o = row_dot(row, x, abs);
+            }
+        }
+    }
+}
+
+fn rows_times_fixed<const M: usize>(rows: &[[f64; M]], x: &[f64; M], out: &mut [f64], abs: bool) {
+    for (o, row) in out.iter_mut().zip(rows) {
+        *o = row_dot(row, x, abs);
+    }
+}
+
+#[inline(always)]
+fn row_dot(row: &[f64], x: &[f64], abs: bool) -> f64 {
+    if abs {
+        row.iter().zip(x).map(|(v, x)| v.abs() * x).sum()
+    } else {
+        row.iter().zip(x).map(|(v, x)| v * x).sum()
+    }
+}
+
 /// Marker for a 1×1 block.
 const NONE: usize = usize::MAX;
 
@@ -189,25 +218,38 @@ impl BlockDiagonal {
     fn dense_apply(&self, x: &mut [f64], which: DensePart) {
         // The block's entries of x are gathered once, so that each row is a dot product of two
         // slices (the same products summed in the same order as entry by entry).
-        let mut xs = [0.0; MAX_DENSE_BLOCK];
-        let mut buf = [0.0; MAX_DENSE_BLOCK];
-        for b in &self.dense {
-            let m = b.indices.len();
-            let xs = &mut xs[..m];
-            for (v, &i) in xs.iter_mut().zip(&b.indices) {
-                *v = x[i];
+        self.with_scratch(|xs, buf| {
+            for b in &self.dense {
+                let m = b.indices.len();
+                let xs = &mut xs[..m];
+                for (v, &i) in xs.iter_mut().zip(&b.indices) {
+                    *v = x[i];
+                }
+                rows_times(
+                    &b.inverse,
+                    xs,
+                    &mut buf[..m],
+                    which == DensePart::AbsInverse,
+                );
+                for (r, &i) in b.indices.iter().enumerate() {
+                    x[i] = buf[r];
+                }
             }
-            for (out, row) in buf.iter_mut().zip(b.inverse.chunks_exact(m)) {
-                *out = match which {
-                    DensePart::Inverse => row.iter().zip(xs.iter()).map(|(v, x)| v * x).sum(),
-                    DensePart::AbsInverse => {
-                        row.iter().zip(xs.iter()).map(|(v, x)| v.abs() * x).sum()
-                    }
-                };
-            }
-            for (r, &i) in b.indices.iter().enumerate() {
-                x[i] = buf[r];
-            }
+        });
+    }
+
+    /// Calls `f` with two zeroed stack buffers as long as the largest dense block (a small
+    /// one when every block is small: zeroing the largest size at every product would cost
+    /// more than the products of bogie vehicles' 10 × 10 blocks).
+    fn with_scratch(&self, f: impl FnOnce(&mut [f64], &mut [f64])) {
+        if self
+            .dense
+            .iter()
+            .all(|b| b.indices.len() <= SMALL_DENSE_BLOCK)
+        {
+            f(&mut [0.0; SMALL_DENSE_BLOCK], &mut [0.0; SMALL_DENSE_BLOCK]);
+        } else {
+            f(&mut [0.0; MAX_DENSE_BLOCK], &mut [0.0; MAX_DENSE_BLOCK]);
         }
     }
 
@@ -349,17 +391,19 @@ impl BlockDiagonal {
 
     /// `y = A x`.
     pub fn mul(&self, x: &[f64], y: &mut [f64]) {
-        let mut xs = [0.0; MAX_DENSE_BLOCK];
-        for b in &self.dense {
-            let m = b.indices.len();
-            let xs = &mut xs[..m];
-            for (v, &i) in xs.iter_mut().zip(&b.indices) {
-                *v = x[i];
+        self.with_scratch(|xs, out| {
+            for b in &self.dense {
+                let m = b.indices.len();
+                let xs = &mut xs[..m];
+                for (v, &i) in xs.iter_mut().zip(&b.indices) {
+                    *v = x[i];
+                }
+                rows_times(&b.entries, xs, &mut out[..m], false);
+                for (&i, o) in b.indices.iter().zip(&out[..m]) {
+                    y[i] = *o;
+                }
             }
-            for (&i, row) in b.indices.iter().zip(b.entries.chunks_exact(m)) {
-                y[i] = row.iter().zip(xs.iter()).map(|(a, x)| a * x).sum();
-            }
-        }
+        });
         for (&(i, j, _), e) in self.blocks.iter().zip(&self.entries) {
             if j == NONE {
                 y[i] = e[0] * x[i];

@@ -20,8 +20,9 @@ use super::{BlockDiagonal, Singular};
 pub struct CapacitanceWork {
     /// Per wheel: A⁻¹ĝ (n; zero outside `support`).
     ainv_g: Vec<Vec<f64>>,
-    /// Per wheel: where A⁻¹ĝ can be non-zero.
+    /// Per wheel: where A⁻¹ĝ can be non-zero, and A⁻¹ĝ there (in the same order).
     support: Vec<Vec<usize>>,
+    on_support: Vec<Vec<f64>>,
     /// Per wheel: the blocks of A that A⁻¹ĝ touches.
     blocks: Vec<Vec<usize>>,
     /// Per wheel: the key of the stored A⁻¹ĝ (A's version, the pattern and ĝ on it).
@@ -57,12 +58,14 @@ struct SolveKey {
 
 impl SolveKey {
     fn matches(&self, version: u64, g: &[f64], pattern: &[usize]) -> bool {
+        // One pass over the pattern (indices and ĝ's bits together).
         self.version == version
-            && self.pattern == pattern
+            && self.pattern.len() == pattern.len()
             && pattern
                 .iter()
+                .zip(&self.pattern)
                 .zip(&self.g)
-                .all(|(&i, &bits)| g[i].to_bits() == bits)
+                .all(|((&i, &stored), &bits)| i == stored && g[i].to_bits() == bits)
     }
 
     fn set(&mut self, version: u64, g: &[f64], pattern: &[usize]) {
@@ -88,12 +91,14 @@ impl CapacitanceWork {
         if self.ainv_g.first().is_some_and(|a| a.len() != n) {
             self.ainv_g.clear();
             self.support.clear();
+            self.on_support.clear();
             self.blocks.clear();
             self.key.clear();
         }
         while self.ainv_g.len() < k {
             self.ainv_g.push(vec![0.0; n]);
             self.support.push(Vec::new());
+            self.on_support.push(Vec::new());
             self.blocks.push(Vec::new());
             self.key.push(SolveKey::default());
         }
@@ -127,6 +132,9 @@ impl CapacitanceWork {
             &mut self.mark,
             self.stamp,
         );
+        let values = &mut self.on_support[wheel];
+        values.clear();
+        values.extend(self.support[wheel].iter().map(|&i| x[i]));
         self.key[wheel].set(a.version(), g, pattern);
     }
 
@@ -242,9 +250,16 @@ pub fn contact_update(
     work.parent.clear();
     work.parent.extend(0..k);
     for c in 0..k {
+        // The wheel last joined (the wheels on the span meet the same first wheel on every
+        // mode block: one union is enough).
+        let mut joined = usize::MAX;
         for &b in &work.blocks[active[c]] {
             let (seen, first) = work.first[b];
             if seen == update {
+                if first == joined {
+                    continue;
+                }
+                joined = first;
                 let (ra, rb) = (find(&mut work.parent, c), find(&mut work.parent, first));
                 if ra != rb {
                     work.parent[ra.max(rb)] = ra.min(rb);
@@ -274,14 +289,8 @@ pub fn contact_update(
     }
     work.group_start.push(k);
     // vᵀx over the pattern (v is zero elsewhere).
-    let v_dot = |c: usize, y: &[f64]| -> f64 {
-        let vc = v[active[c]].as_ref();
-        pattern[active[c]]
-            .as_ref()
-            .iter()
-            .map(|&i| vc[i] * y[i])
-            .sum()
-    };
+    let v_dot =
+        |c: usize, y: &[f64]| pattern_dot(pattern[active[c]].as_ref(), v[active[c]].as_ref(), y);
     for g in 0..work.group_start.len() - 1 {
         let members = &work.order[work.group_start[g]..work.group_start[g + 1]];
         let kg = members.len();
@@ -299,10 +308,11 @@ pub fn contact_update(
         work.rhs.clear();
         work.cap.clear();
         for &cr in members {
+            let (pr, vr) = (pattern[active[cr]].as_ref(), v[active[cr]].as_ref());
             for &cq in members {
                 let diag = if cr == cq { compliance[cr] } else { 0.0 };
-                work.cap
-                    .push(diag + s * v_dot(cr, &work.ainv_g[active[cq]]));
+                let y = &work.ainv_g[active[cq]];
+                work.cap.push(diag + s * pattern_dot(pr, vr, y));
             }
             work.rhs.push(v_dot(cr, x) + delta_tilde[cr]);
         }
@@ -332,11 +342,20 @@ pub fn contact_update(
     for c in 0..k {
         let f = s * df[c];
         let wheel = active[c];
-        for &i in &work.support[wheel] {
-            x[i] -= f * work.ainv_g[wheel][i];
+        for (&i, g) in work.support[wheel].iter().zip(&work.on_support[wheel]) {
+            x[i] -= f * g;
         }
     }
     Ok(())
+}
+
+/// `vᵀy` for a `v` zero outside `pattern`.
+fn pattern_dot(pattern: &[usize], v: &[f64], y: &[f64]) -> f64 {
+    match pattern {
+        // A wheel off the span: one term (the same value as the sum).
+        &[i] => v[i] * y[i],
+        p => p.iter().map(|&i| v[i] * y[i]).sum(),
+    }
 }
 
 /// Groups up to this size are solved by [`small_solve_in_place`]; larger ones by
@@ -347,6 +366,68 @@ const SMALL_GROUP: usize = 16;
 /// elimination with partial pivoting (Golub & Van Loan, Algorithm 3.4.1; references.md §R4.1).
 /// False if a pivot is zero or not finite (the matrix is singular to working precision).
 fn small_solve_in_place(a: &mut [f64], b: &mut [f64]) -> bool {
+    // The sizes of one vehicle's wheels and of a few vehicles on the span with a fixed
+    // size (the compiler unrolls the loops; the same operations in the same order).
+    match b.len() {
+        2 => fixed_solve_in_place::<2>(a, b),
+        3 => fixed_solve_in_place::<3>(a, b),
+        4 => fixed_solve_in_place::<4>(a, b),
+        8 => fixed_solve_in_place::<8>(a, b),
+        _ => any_solve_in_place(a, b),
+    }
+}
+
+/// [`small_solve_in_place`] for `M` unknowns (row-major `M × M` in `a`).
+fn fixed_solve_in_place<const M: usize>(a: &mut [f64], b: &mut [f64]) -> bool {
+    if a.len() != M * M || b.len() != M {
+        return any_solve_in_place(a, b);
+    }
+    let a = a.as_chunks_mut::<M>().0;
+    let Ok(b) = <&mut [f64; M]>::try_from(b) else {
+        return false;
+    };
+    for col in 0..M {
+        let mut pivot = col;
+        for r in col + 1..M {
+            if a[r][col].abs() > a[pivot][col].abs() {
+                pivot = r;
+            }
+        }
+        let p = a[pivot][col];
+        if p == 0.0 || !p.is_finite() {
+            return false;
+        }
+        if pivot != col {
+            for j in col..M {
+                let t = a[pivot][j];
+                a[pivot][j] = a[col][j];
+                a[col][j] = t;
+            }
+            b.swap(pivot, col);
+        }
+        let b_col = b[col];
+        for r in col + 1..M {
+            let f = a[r][col] / p;
+            if f != 0.0 {
+                for j in col + 1..M {
+                    a[r][j] -= f * a[col][j];
+                }
+                b[r] -= f * b_col;
+            }
+        }
+    }
+    for r in (0..M).rev() {
+        let mut y = b[r];
+        for j in r + 1..M {
+            y -= a[r][j] * b[j];
+        }
+        b[r] = y / a[r][r];
+    }
+    true
+}
+
+/// [`small_solve_in_place`] for any size.
+fn any_solve_in_place(a: &mut [f64], b: &mut [f64]) -> bool {
     let m = b.len();
     for col in 0..m {
         let mut pivot = col;

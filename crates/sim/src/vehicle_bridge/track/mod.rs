@@ -30,11 +30,23 @@
 //! backward sweep of the factor, k sparse forward sweeps and the sparse products of the
 //! step load.
 //!
+//! # Contact models and moving forces
+//! Hertz and the real-profile law (one column at the wheel) take the point path above; the
+//! boundary-element grid (module `patch`) adds the rail's deflection shape under the patch to
+//! its gap and loads the rail where the columns carry the force, solved on the contact DOFs'
+//! Woodbury system; the rigid contact (module `constraint`) is the complementarity problem of
+//! δ = δ₀ − S F. Moving forces load the rail through b(x_p + c t) (module `moving`).
+//!
 //! # Start
-//! The static solution of the track and bridge under the static wheel loads at the start
-//! positions (`K u = Σ_k W_k b_k`), every wheel at its static approach above the deflected
-//! rail, at rest relative to it (velocities from the irregularity slope as without the track).
+//! The static solution of the track and bridge under the static wheel loads (and moving
+//! forces) at the start positions (`K u = Σ_k W_k b_k`), every wheel at its static approach
+//! above the deflected rail (a BEM wheel with its patch's load distribution and column gaps),
+//! velocities from the irregularity slope as without the track; a rigid wheel also moves with
+//! the static rail's slope under it, c u'(x_k).
 
+mod constraint;
+mod moving;
+mod patch;
 mod step;
 
 use beam::track::{
@@ -43,6 +55,8 @@ use beam::track::{
 use faer::sparse::Triplet;
 use integrate::structural::AlphaParameters;
 use integrate::structural::sparse::SparseMatrix;
+
+use halfspace::law::{ContactModel as LawModel, LawOutput};
 
 use super::error::{invalid, invalid_text};
 use super::{ContactModel, CouplingSolver, Integrator, Simulation, VehicleBridgeError};
@@ -129,6 +143,12 @@ pub(super) struct TrackLayer {
     reach: Vec<SparseReach>,
     /// The contact solve's work space.
     newton: step::NewtonWork,
+    /// The boundary-element contacts (`None`: point contacts or the rigid constraint).
+    patch: Option<patch::PatchContacts>,
+    /// The rigid contacts' solve (`None`: force laws).
+    rigid: Option<constraint::RigidContacts>,
+    /// The wheels' track coordinates at the step's end \[m\].
+    positions: Vec<f64>,
     sample: TrackSample,
     maxima: TrackMaxima,
     /// Output point in track coordinates \[m\].
@@ -144,6 +164,14 @@ fn alpha_parameters(integrator: &Integrator) -> Result<AlphaParameters, VehicleB
             .ok_or_else(|| invalid_text("integrator.method", method.name(), ALLOWED)),
         other => Err(invalid_text("integrator.method", other.name(), ALLOWED)),
     }
+}
+
+/// Whether a member of the generalized-α family damps the highest frequencies: γ > ½
+/// (Newmark with γ > ½; HHT-α and generalized-α, whose γ = ½ − α_m + α_f exceeds ½ exactly
+/// when α_f > α_m, i.e. α < 0 or ρ∞ < 1; references.md §D3.5). The rigid contact's
+/// displacement-level constraint needs it (module [`constraint`]).
+fn dissipative(p: &AlphaParameters) -> bool {
+    p.gamma > 0.5 + 1e-9
 }
 
 /// The coupled system's step-matrix coefficients (c_M, c_C, c_K) for Δt (the step equation
@@ -187,25 +215,21 @@ fn merged(mut entries: Vec<(usize, usize, f64)>) -> Vec<(usize, usize, f64)> {
 
 impl Simulation {
     /// [`Simulation::with_vehicles`] with the track of `spec` between the wheels and the
-    /// bridge (module [`track`](self)). Needs the Hertz contact, a method of the Newmark /
-    /// HHT / generalized-α family, no moving forces, and a track long enough for every wheel
-    /// over the whole run; an error names the key otherwise.
+    /// bridge (module [`track`](self)). Needs a method of the Newmark / HHT / generalized-α
+    /// family (with numerical dissipation for the rigid contact), the capacitance Newton
+    /// coupling, and a track long enough for every wheel over the whole run; an error names
+    /// the key otherwise.
     pub fn with_track(
         scenario: super::Scenario,
         layouts: Vec<super::VehicleLayout>,
         spec: TrackSpec,
     ) -> Result<Self, VehicleBridgeError> {
         let params = alpha_parameters(&scenario.integrator)?;
-        if scenario.contact != ContactModel::Hertz {
-            let name = match scenario.contact {
-                ContactModel::Rigid => "rigid",
-                ContactModel::Bem { .. } | ContactModel::BemProfiles(_) => "bem",
-                ContactModel::Hertz => "hertz",
-            };
+        if scenario.contact == ContactModel::Rigid && !dissipative(&params) {
             return Err(invalid_text(
-                "contact.model",
-                name,
-                "[track] couples the wheels to the rail through the Hertz contact only (model = \"hertz\")",
+                "integrator.method",
+                scenario.integrator.name(),
+                "the rigid contact on [track] needs a method with numerical dissipation (generalized_alpha with rho_inf < 1, hht with alpha < 0, or newmark with gamma > 0.5): the constraint on the step's displacements makes the trapezoidal rule's contact force oscillate undamped at 2 dt and the wheel chatter",
             ));
         }
         if scenario.coupling.solver == CouplingSolver::Picard {
@@ -215,18 +239,38 @@ impl Simulation {
                 "[track] solves the contact forces by Newton's method on the capacitance system (quasi_newton or newton)",
             ));
         }
-        if !scenario.moving_forces.is_empty() {
-            return Err(invalid(
-                "moving_forces",
-                scenario.moving_forces.len() as f64,
-                "moving forces are not supported with [track]",
-            ));
-        }
         let mut sim = Self::with_vehicles(scenario, layouts)?;
         let layer = TrackLayer::new(&mut sim, spec, params)?;
         sim.track = Some(Box::new(layer));
+        sim.track_start_outputs()?;
         sim.track_samples()?;
         Ok(sim)
+    }
+
+    /// The contact outputs of the static start (the patch contacts' are left by their static
+    /// start): a point law at the wheel's approach, the rigid constraint with the static load.
+    fn track_start_outputs(&mut self) -> Result<(), VehicleBridgeError> {
+        let layer = self.track.as_ref().expect("called with a track");
+        if layer.patch.is_some() {
+            return Ok(());
+        }
+        let q = self.stepper.q();
+        for k in 0..self.scenario.wheels.len() {
+            let x = self.scenario.wheels[k].position;
+            let rail = layer.rail_point(x)?.value(&layer.q);
+            let delta = q[self.wheel_dof[k]] - rail + self.scenario.irregularity.height(x);
+            self.work.outputs[k] = match &mut self.contacts[k] {
+                LawModel::Law(law) => law
+                    .evaluate(delta, &[0.0], &mut [0.0], true)
+                    .map_err(super::contact::wheel_error(k))?,
+                LawModel::Rigid(_) => LawOutput {
+                    force: self.static_loads[k],
+                    ..LawOutput::default()
+                },
+            };
+            self.work.delta[k] = delta;
+        }
+        Ok(())
     }
 
     /// The track's response at the current time (`None` without a track).
@@ -339,21 +383,53 @@ impl TrackLayer {
         let nw = sc.wheels.len();
         let approach = spec.approach;
         let mut points = Vec::with_capacity(nw);
+        let mut positions = Vec::with_capacity(nw);
         let mut load = vec![0.0; track.n_dofs()];
+        moving::add_moving_loads(&track, sc, 0.0, 1.0, &mut load)?;
+        let mut patch = patch::PatchContacts::of(&sim.contacts);
+        let base = patch.as_ref().map(|_| load.clone());
         for (k, w) in sc.wheels.iter().enumerate() {
             let p = track.rail_point(w.position + approach).map_err(track_key)?;
             for a in 0..4 {
                 load[p.dofs[a]] += sim.static_loads[k] * p.weights[a];
             }
             points.push(p);
+            positions.push(w.position + approach);
         }
-        let u_track = track.static_solution(&load).map_err(track_key)?;
+        // The wheels' static approaches: the patches' on the statically deflected rail (their
+        // load distributed as they carry it), the laws' own otherwise (with_vehicles).
+        let mut q_sim = sim.stepper.q().to_vec();
+        let (u_track, shift) = match (patch.as_mut(), base) {
+            (Some(patch), Some(base)) => {
+                let wheel_dofs: Vec<usize> = sim.wheel_dof.iter().map(|&d| offset + d).collect();
+                let (u, approaches) = patch.static_start(
+                    &track,
+                    &mut sim.contacts,
+                    &positions,
+                    &sim.static_loads,
+                    &base,
+                    &wheel_dofs,
+                    &mut sim.work.outputs,
+                )?;
+                let shift: Vec<f64> = (0..nw)
+                    .map(|k| {
+                        let x = sc.wheels[k].position;
+                        approaches[k] - (q_sim[sim.wheel_dof[k]] + sc.irregularity.height(x))
+                    })
+                    .collect();
+                sim.work.delta[..nw].copy_from_slice(&approaches);
+                (u, shift)
+            }
+            _ => (
+                track.static_solution(&load).map_err(track_key)?,
+                vec![0.0; nw],
+            ),
+        };
         // The vehicles ride on the deflected rail: each wheel (and its quarter-car body) moves
         // down with the rail under it, a bogie vehicle's bodies take their statics anew.
-        let mut q_sim = sim.stepper.q().to_vec();
         q_sim[..m].copy_from_slice(&u_track[offset..]);
         for k in 0..nw {
-            let u = points[k].value(&u_track);
+            let u = points[k].value(&u_track) + shift[k];
             q_sim[sim.wheel_dof[k]] += u;
             if let Some(ib) = sim.body_dof[k] {
                 q_sim[ib] += u;
@@ -364,6 +440,26 @@ impl TrackLayer {
         }
         let mut v_sim = sim.stepper.v().to_vec();
         v_sim[..m].fill(0.0);
+        // A rigid wheel starts with the velocity c u_rail'(x_k) of the static rail point under
+        // it (tied to the rail, it cannot take a jump of relative velocity without an impulse;
+        // u' by a central difference over ±1 µm of the cubic Hermite interpolation).
+        if sim.contacts.iter().all(super::contact::is_rigid) {
+            let h = 1e-6;
+            for (k, w) in sc.wheels.iter().enumerate() {
+                let x = w.position + approach;
+                let slope = (track
+                    .rail_displacement(x + h, &u_track)
+                    .map_err(track_key)?
+                    - track
+                        .rail_displacement(x - h, &u_track)
+                        .map_err(track_key)?)
+                    / (2.0 * h);
+                v_sim[sim.wheel_dof[k]] += sc.speed * slope;
+                if let Some(ib) = sim.body_dof[k] {
+                    v_sim[ib] += sc.speed * slope;
+                }
+            }
+        }
         let mut q = vec![0.0; n];
         q[..offset].copy_from_slice(&u_track[..offset]);
         q[offset..].copy_from_slice(&q_sim);
@@ -411,6 +507,13 @@ impl TrackLayer {
             y: vec![vec![0.0; n]; nw],
             reach,
             newton: step::NewtonWork::new(nw),
+            rigid: sim
+                .contacts
+                .iter()
+                .all(super::contact::is_rigid)
+                .then(|| constraint::RigidContacts::new(nw)),
+            patch,
+            positions,
             q,
             v,
             a,
@@ -498,6 +601,19 @@ fn nested_dissection(track: &Track, n: usize) -> Vec<usize> {
     dissect(0, nodes, &group, &mut order);
     order.extend(n_track..n_track + track.n_modes());
     order
+}
+
+/// The failure of a contact solve `solver` after `iterations` (the step fills in its time).
+fn solve_failure(solver: &'static str, iterations: usize, reason: &str) -> VehicleBridgeError {
+    VehicleBridgeError::CouplingFailed {
+        solver,
+        t: f64::NAN,
+        dt: f64::NAN,
+        halvings: 0,
+        iterations,
+        change: f64::NAN,
+        reason: reason.to_string(),
+    }
 }
 
 /// A track-model error as an input error of the `[track]` table (`track.<name>`).

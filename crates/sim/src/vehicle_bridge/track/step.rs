@@ -9,6 +9,7 @@ use super::super::contact::wheel_error;
 use super::super::error::invalid;
 use super::super::{Simulation, VehicleBridgeError, WheelSample};
 use super::TrackLayer;
+use super::moving::add_moving_loads;
 
 /// Newton's method on `F_k = F_law,k(δ₀_k − (S F)_k)` (S: the k × k capacitance matrix,
 /// row-major): the Jacobian of `G(F) = F − F_law(δ₀ − S F)` is `I + diag(k_c) S`. Each
@@ -218,65 +219,36 @@ impl Simulation {
         // h = α_m M a + α_f (C v + K q).
         l.r.copy_from_slice(&l.gravity);
         let nw = self.scenario.wheels.len();
-        for k in 0..nw {
-            let f_old = af * l.forces[k];
-            if f_old != 0.0 {
-                let pt = &l.points[k];
-                for a in 0..4 {
-                    l.r[pt.dofs[a]] += f_old * pt.weights[a];
+        if let Some(patch) = &l.patch {
+            patch.add_old_load(af, &mut l.r);
+        } else {
+            for k in 0..nw {
+                let f_old = af * l.forces[k];
+                if f_old != 0.0 {
+                    let pt = &l.points[k];
+                    for a in 0..4 {
+                        l.r[pt.dofs[a]] += f_old * pt.weights[a];
+                    }
+                    l.r[l.offset + self.wheel_dof[k]] -= f_old;
                 }
-                l.r[l.offset + self.wheel_dof[k]] -= f_old;
             }
         }
+        let t_new = self.t() + dt;
+        add_moving_loads(&l.track, &self.scenario, self.t(), af, &mut l.r)?;
+        add_moving_loads(&l.track, &self.scenario, t_new, s, &mut l.r)?;
         sparse_mul_add(l.mass.as_ref(), 1.0, &l.tmp, &mut l.r);
         sparse_mul_add(l.damping.as_ref(), 1.0, &l.tmp_c, &mut l.r);
         if af != 0.0 {
             sparse_mul_add(l.stiffness.as_ref(), -af, &l.q, &mut l.r);
         }
-        // z = L⁻¹P r; y_k = L⁻¹P v_k, v_k = e_k − b_k.
+        // z = L⁻¹P r; the contact forces; z ← z − s L⁻¹P Σ_k F_k v_k.
         l.factor.forward(&mut l.r);
-        let t_new = self.t() + dt;
-        l.newton.resize(nw);
-        let mut delta0 = std::mem::take(&mut l.newton.delta0);
-        let mut cap = std::mem::take(&mut l.newton.cap);
-        let mut forces = std::mem::take(&mut l.newton.forces);
-        for k in 0..nw {
-            let x = self.scenario.wheels[k].position + self.scenario.speed * t_new;
-            let pt = l.rail_point(x)?;
-            let iw = l.offset + self.wheel_dof[k];
-            let v: [(usize, f64); 5] = [
-                (iw, 1.0),
-                (pt.dofs[0], -pt.weights[0]),
-                (pt.dofs[1], -pt.weights[1]),
-                (pt.dofs[2], -pt.weights[2]),
-                (pt.dofs[3], -pt.weights[3]),
-            ];
-            l.factor
-                .forward_sparse_reach(&v, &mut l.y[k], &mut l.reach[k]);
-            l.points[k] = pt;
-            self.work.r_at_wheel[k] = self.scenario.irregularity.height(x);
-            delta0[k] = dot(l.reach[k].nodes(), &l.y[k], &l.r) + self.work.r_at_wheel[k];
-        }
-        for j in 0..nw {
-            for k in 0..=j {
-                let c = s * dot(l.reach[j].nodes(), &l.y[j], &l.y[k]);
-                cap[j * nw + k] = c;
-                cap[k * nw + j] = c;
-            }
-        }
-        let tol = self.scenario.coupling.tol * self.force_scale;
-        forces.copy_from_slice(&l.forces);
-        let solved = contact_forces(
-            &mut self.contacts,
-            &delta0,
-            &cap,
-            &mut forces,
-            &mut self.work.outputs,
-            tol,
-            self.scenario.coupling.max_iter,
-            &mut l.newton,
-        );
-        let (iterations, _change) = solved.map_err(|e| match e {
+        let solved = if l.patch.is_some() {
+            self.patch_contact(l, t_new)
+        } else {
+            self.point_contact(l, t_new)
+        };
+        let iterations = solved.map_err(|e| match e {
             VehicleBridgeError::CouplingFailed {
                 solver,
                 iterations,
@@ -294,14 +266,6 @@ impl Simulation {
             },
             other => other,
         })?;
-        for k in 0..nw {
-            let f = s * forces[k];
-            for &i in l.reach[k].nodes() {
-                l.r[i] -= f * l.y[k][i];
-            }
-            self.work.delta[k] =
-                delta0[k] - (0..nw).map(|j| cap[k * nw + j] * forces[j]).sum::<f64>();
-        }
         l.factor.backward(&mut l.r);
         {
             let inv_cqa = 1.0 / c_qa;
@@ -314,11 +278,6 @@ impl Simulation {
                 q[i] = x[i];
             }
         }
-        l.forces.copy_from_slice(&forces);
-        // The step's vectors back into the work space (no allocation in the next step).
-        l.newton.delta0 = delta0;
-        l.newton.cap = cap;
-        l.newton.forces = forces;
         // The simulation's DOFs to its stepper (which holds the reported state).
         let o = l.offset;
         self.stepper.restart_with_acceleration(
@@ -344,6 +303,78 @@ impl Simulation {
         Ok(())
     }
 
+    /// The point contacts' forces of a step (Hertz, the profile law, the rigid constraint):
+    /// y_k = L⁻¹P v_k (v_k = e_k − b_k), δ₀ and S, the forces, and z ← z − s Σ_k F_k y_k in
+    /// `l.r`. Returns the iterations.
+    fn point_contact(
+        &mut self,
+        l: &mut TrackLayer,
+        t_new: f64,
+    ) -> Result<usize, VehicleBridgeError> {
+        let s = 1.0 - l.params.alpha_f;
+        let nw = self.scenario.wheels.len();
+        l.newton.resize(nw);
+        let mut delta0 = std::mem::take(&mut l.newton.delta0);
+        let mut cap = std::mem::take(&mut l.newton.cap);
+        let mut forces = std::mem::take(&mut l.newton.forces);
+        for k in 0..nw {
+            let x = self.scenario.wheels[k].position + self.scenario.speed * t_new;
+            let pt = l.rail_point(x)?;
+            let iw = l.offset + self.wheel_dof[k];
+            let v: [(usize, f64); 5] = [
+                (iw, 1.0),
+                (pt.dofs[0], -pt.weights[0]),
+                (pt.dofs[1], -pt.weights[1]),
+                (pt.dofs[2], -pt.weights[2]),
+                (pt.dofs[3], -pt.weights[3]),
+            ];
+            l.factor
+                .forward_sparse_reach(&v, &mut l.y[k], &mut l.reach[k]);
+            l.points[k] = pt;
+            self.work.r_at_wheel[k] = self.scenario.irregularity.height(x);
+            delta0[k] = dot_on(l.reach[k].nodes(), &l.y[k], &l.r) + self.work.r_at_wheel[k];
+        }
+        for j in 0..nw {
+            for k in 0..=j {
+                let c = s * dot_on(l.reach[j].nodes(), &l.y[j], &l.y[k]);
+                cap[j * nw + k] = c;
+                cap[k * nw + j] = c;
+            }
+        }
+        let tol = self.scenario.coupling.tol * self.force_scale;
+        forces.copy_from_slice(&l.forces);
+        let solved = if let Some(rigid) = l.rigid.as_mut() {
+            rigid.forces(&delta0, &cap, &mut forces, &mut self.work.outputs, tol)
+        } else {
+            contact_forces(
+                &mut self.contacts,
+                &delta0,
+                &cap,
+                &mut forces,
+                &mut self.work.outputs,
+                tol,
+                self.scenario.coupling.max_iter,
+                &mut l.newton,
+            )
+            .map(|(iterations, _change)| iterations)
+        };
+        let iterations = solved?;
+        for k in 0..nw {
+            let f = s * forces[k];
+            for &i in l.reach[k].nodes() {
+                l.r[i] -= f * l.y[k][i];
+            }
+            self.work.delta[k] =
+                delta0[k] - (0..nw).map(|j| cap[k * nw + j] * forces[j]).sum::<f64>();
+        }
+        l.forces.copy_from_slice(&forces);
+        // The step's vectors back into the work space (no allocation in the next step).
+        l.newton.delta0 = delta0;
+        l.newton.cap = cap;
+        l.newton.forces = forces;
+        Ok(iterations)
+    }
+
     /// The wheel samples and the track sample at the current state (and the running maxima).
     pub(super) fn track_samples(&mut self) -> Result<(), VehicleBridgeError> {
         let t = self.t();
@@ -358,17 +389,8 @@ impl Simulation {
             let iw = self.wheel_dof[k];
             let r = self.scenario.irregularity.height(x);
             let delta = q[iw] - rail + r;
-            let contact = if t == 0.0 {
-                // The static start: the law at the static approach.
-                let LawModel::Law(law) = &mut self.contacts[k] else {
-                    unreachable!("compliant laws only")
-                };
-                let mut cf = [0.0];
-                law.evaluate(delta, &[0.0], &mut cf, true)
-                    .map_err(wheel_error(k))?
-            } else {
-                self.work.outputs[k]
-            };
+            // The law's output of the last step (of the static start at t = 0).
+            let contact = self.work.outputs[k];
             let body = self.wheel_vehicle[k]
                 .map(|v| self.vehicles[v].body_over(k - self.vehicles[v].first_wheel))
                 .or(self.body_dof[k]);
@@ -379,10 +401,7 @@ impl Simulation {
                 body_acceleration: body.map_or(0.0, |ib| a[ib]),
                 wheel_acceleration: a[iw],
                 approach: delta,
-                contact: LawOutput {
-                    iterations: 0,
-                    ..contact
-                },
+                contact,
             };
             layer.sample.rail_displacement[k] = rail;
             layer.maxima.rail_displacement = layer.maxima.rail_displacement.max(rail);
@@ -432,12 +451,32 @@ impl Simulation {
     }
 }
 
-/// aᵀb for an `a` that is zero outside `nodes` (increasing; y = L⁻¹Pv is zero off the reach
-/// of its sweep), summed over `nodes` only but as over all entries from the first non-zero of
-/// `a` on with four partial sums (independent chains of additions): entry i goes to partial
-/// sum (i − start) mod 4 within the whole blocks of four, the rest is added in order after.
-/// The skipped entries contribute exact zeros, so the sum is the full one, bit for bit.
-fn dot(nodes: &[usize], a: &[f64], b: &[f64]) -> f64 {
+/// aᵀb with four partial sums (independent chains of additions), over the entries from the
+/// first non-zero of `a` on (y = L⁻¹Pv is zero before the first non-zero of Pv).
+pub(super) fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let start = a.iter().position(|&x| x != 0.0).unwrap_or(a.len());
+    let (a, b) = (&a[start..], &b[start.min(b.len())..]);
+    let n = a.len().min(b.len());
+    let mut acc = [0.0f64; 4];
+    let chunks = n / 4;
+    for c in 0..chunks {
+        for (j, s) in acc.iter_mut().enumerate() {
+            *s += a[4 * c + j] * b[4 * c + j];
+        }
+    }
+    let mut total = (acc[0] + acc[1]) + (acc[2] + acc[3]);
+    for i in 4 * chunks..n {
+        total += a[i] * b[i];
+    }
+    total
+}
+
+/// [`dot`] for an `a` that is zero outside `nodes` (increasing; y = L⁻¹Pv is zero off the
+/// reach of its sweep), summed over `nodes` only but as [`dot`] sums over all entries from the
+/// first non-zero of `a` on: entry i goes to partial sum (i − start) mod 4 within the whole
+/// blocks of four, the rest is added in order after. The skipped entries contribute exact
+/// zeros, so the sum is [`dot`]'s, bit for bit.
+fn dot_on(nodes: &[usize], a: &[f64], b: &[f64]) -> f64 {
     let Some(first) = nodes.iter().position(|&i| a[i] != 0.0) else {
         return 0.0;
     };
