@@ -646,7 +646,7 @@ impl Simulation {
     }
 
     /// The grid columns' positions ξ_i relative to wheel k and the column gaps c(ξ_i) of its
-    /// last evaluation \[m\] (module [`patch`](self)); `None` without a track or with a point
+    /// last evaluation \[m\] (module `track::patch`); `None` without a track or with a point
     /// contact.
     pub fn track_patch_gaps(&self, wheel: usize) -> Option<(&[f64], &[f64])> {
         self.track
