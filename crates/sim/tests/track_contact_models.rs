@@ -449,3 +449,47 @@ fn rigid_contact_on_the_track_runs_with_the_default_method() {
     let hertz = with_contact("model = \"hertz\"", 0.01).replace("method = \"newmark\"\n", "");
     assert_eq!(parse(&hertz).unwrap().scenario.integrator.name(), "newmark");
 }
+
+/// A moving force must be on the modelled track for the whole run, like a wheel: one stepping
+/// onto the rail's free start (or off its free end) would load it suddenly, a transient of the
+/// model's boundary (measured with the CLI: a 153.8 kN axle entering the rail's start at
+/// 60 m/s behind a car gave a largest pad force of 178.8 kN, 52.7 kN with a long enough
+/// approach). Refused naming the key and the length needed, for a force behind the car
+/// (approach) and one ahead of it (exit).
+#[test]
+fn moving_forces_off_the_track_are_refused() {
+    let refusal = |text: &str| match parse(text) {
+        Ok(c) => Simulation::with_track(c.scenario, c.vehicles, c.track.unwrap())
+            .err()
+            .map(|e| e.to_string()),
+        Err(e) => Some(e.to_string()),
+    };
+    // The car first, the force 10 m behind it: the force starts at -19.8 m, the approach is
+    // 15 m (the car at -9.8 m is on it).
+    let behind = example()
+        .replace(
+            "[vehicle]",
+            "[train]\nspeed = 30.0\nposition = -9.8\n[[train.vehicles]]\ntype = \"quarter_car\"\nlength = 10.0\nwheel_mass = 600.0\nbody_mass = 5750.0\nsuspension_stiffness = 1595e3\nsuspension_damping = 2e4\n[[train.vehicles]]\ntype = \"moving_forces\"\nlength = 1.0\naxle_positions = [0.0]\naxle_loads = [1.0e5]\n[vehicle]",
+        )
+        .replace("approach_length = 20.0", "approach_length = 15.0");
+    let start = behind.find("[vehicle]").unwrap();
+    let end = behind.find("[contact]").unwrap();
+    let behind = format!("{}{}", &behind[..start], &behind[end..]);
+    let e = refusal(&behind).expect("a force starting off the track is refused");
+    assert!(
+        e.contains("`track.approach_length` = 15") && e.contains("at least 19.8 m"),
+        "{e}"
+    );
+    // With the approach long enough it runs.
+    assert!(refusal(&behind.replace("approach_length = 15.0", "approach_length = 20.0")).is_none());
+    // The force 20 m ahead of the car: it reaches x = 45 m (20 m beyond the bridge) when the
+    // car leaves the span.
+    let ahead =
+        force_ahead_of_a_car(30.0, 10.2).replace("exit_length = 20.0", "exit_length = 15.0");
+    let e = refusal(&ahead).expect("a force leaving the track is refused");
+    assert!(
+        e.contains("`track.exit_length` = 15") && e.contains("at least 20.0"),
+        "{e}"
+    );
+    assert!(refusal(&ahead.replace("exit_length = 15.0", "exit_length = 21.0")).is_none());
+}

@@ -325,6 +325,19 @@ fn refusals_name_the_key() {
             "`integrator.method` = \"newmark\": the rigid contact on [track] needs a method with numerical dissipation",
         ),
         (
+            base.replace("model = \"hertz\"", "model = \"rigid\"")
+                .replace(
+                    "method = \"newmark\"",
+                    "method = \"generalized_alpha\"\nrho_inf = 1.0",
+                ),
+            "`integrator.rho_inf` = 1: the rigid contact on [track] needs a method with numerical dissipation",
+        ),
+        (
+            base.replace("model = \"hertz\"", "model = \"rigid\"")
+                .replace("method = \"newmark\"", "method = \"hht\"\nalpha = 0.0"),
+            "`integrator.alpha` = 0: the rigid contact on [track] needs a method with numerical dissipation",
+        ),
+        (
             base.replace("method = \"newmark\"", "method = \"backward_euler\""),
             "`integrator.method` = \"backward_euler\"",
         ),
