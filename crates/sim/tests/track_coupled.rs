@@ -415,6 +415,15 @@ fn refusals_name_the_key() {
             .replace("rail = \"60E1\"\n", ""),
             "[track] `rail_beam` does not apply to model = \"none\"",
         ),
+        (
+            base.replace("model = \"hertz\"", "model = \"rigid\"")
+                .replace(
+                    "rail = \"60E1\"",
+                    "rail = \"60E1\"\nrail_beam = \"timoshenko\"",
+                )
+                .replace("method = \"newmark\"", "method = \"generalized_alpha\""),
+            "`contact.model` = \"rigid\": the rigid contact cannot ride on track.rail_beam = \"timoshenko\"",
+        ),
     ];
     for (text, want) in cases {
         let got = error(&text);
