@@ -122,7 +122,8 @@ fn rigid_static_start_is_exact() {
 /// Real wheel and rail profiles (`[contact.profiles]`, one column at the wheel: the point
 /// path of the track step, as Hertz) on the track: the static start carries the wheel load
 /// (1e-9) and a wheel crawling at 1 µm/s for 0.01 s on the span keeps its force, the rail
-/// displacement under it and the midspan deflection (1e-8).
+/// displacement under it and the midspan deflection (1e-8); the law's solver iterations are
+/// counted in the stats.
 #[test]
 fn profile_contact_on_the_track_starts_static() {
     let text = example()
@@ -142,6 +143,15 @@ fn profile_contact_on_the_track_starts_static() {
     assert!((sim.wheels()[0].contact.force / weight - 1.0).abs() < 1e-9);
     let changes = crawl(&mut sim);
     assert!(changes.iter().all(|c| *c < 1e-8), "{changes:?}");
+    // The profile law's half-space solves are counted (the summary's contact-solver
+    // iterations): at least one solve with at least one iteration per step.
+    let stats = sim.stats();
+    assert!(
+        stats.steps > 0 && stats.contact_iterations >= stats.steps,
+        "{} contact-solver iterations in {} steps",
+        stats.contact_iterations,
+        stats.steps
+    );
 }
 
 /// The example's car replaced by two cars at the same position with half of its masses,
