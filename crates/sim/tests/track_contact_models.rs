@@ -493,3 +493,39 @@ fn moving_forces_off_the_track_are_refused() {
     );
     assert!(refusal(&ahead.replace("exit_length = 15.0", "exit_length = 21.0")).is_none());
 }
+
+/// A wheel at the rail's start: the rigid wheel's start velocity takes the static rail's slope
+/// one-sided there (it was an error from the central difference reaching 1 µm beyond the
+/// rail); a BEM wheel needs its whole patch on the rail (its column gaps read the rail under
+/// every column: a patch reaching beyond the end was accepted and failed after 12 steps), so
+/// the approach is refused naming the key and the length the patch needs.
+#[test]
+fn a_wheel_at_the_rail_start() {
+    let at_start = |contact: &str, method: &str| {
+        example()
+            .replace("approach_length = 20.0", "approach_length = 10.0")
+            .replace("model = \"hertz\"", contact)
+            .replace(
+                "method = \"newmark\"",
+                &format!("method = \"{method}\"\nduration = 0.01"),
+            )
+    };
+    let mut sim = simulation(&at_start("model = \"rigid\"", "generalized_alpha"));
+    sim.run(|_| {}).unwrap();
+    let f = sim.wheels()[0].contact.force;
+    assert!(f.is_finite() && f > 0.0, "{f}");
+
+    let bem = at_start("model = \"bem\"\ngrid = 16", "newmark");
+    let c = parse(&bem).unwrap();
+    let e = Simulation::with_track(c.scenario, c.vehicles, c.track.unwrap())
+        .err()
+        .expect("a patch beyond the rail's start is refused")
+        .to_string();
+    assert!(
+        e.contains("`track.approach_length` = 10") && e.contains("contact patch"),
+        "{e}"
+    );
+    let mut sim = simulation(&bem.replace("approach_length = 10.0", "approach_length = 10.01"));
+    sim.run(|_| {}).unwrap();
+    assert!(sim.wheels()[0].contact.force > 0.0);
+}

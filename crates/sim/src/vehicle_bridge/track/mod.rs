@@ -338,20 +338,27 @@ impl TrackLayer {
         // suddenly, a transient of the model's boundary that the real track, continuing beyond it,
         // does not have (measured: a 153.8 kN axle entering the rail's start at 60 m/s, the
         // largest pad force 178.8 kN against 52.7 kN with the rail 55 m longer).
+        // A wheel's extent is its contact patch's (the grid columns of a BEM law, ±|ξ|max): the
+        // patch's gap reads the rail under every column (module `patch`).
+        let extent = |k: usize| match &sim.contacts[k] {
+            LawModel::Law(law) => law.columns().iter().fold(0.0f64, |m, c| m.max(c.abs())),
+            _ => 0.0,
+        };
         let positions = || {
             sc.wheels
                 .iter()
-                .map(|w| w.position)
-                .chain(sc.moving_forces.iter().map(|p| p.position))
+                .enumerate()
+                .map(|(k, w)| (w.position - extent(k), w.position + extent(k)))
+                .chain(sc.moving_forces.iter().map(|p| (p.position, p.position)))
         };
-        let first = positions().fold(f64::INFINITY, f64::min);
-        let last = positions().fold(f64::NEG_INFINITY, f64::max);
+        let first = positions().map(|p| p.0).fold(f64::INFINITY, f64::min);
+        let last = positions().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max);
         if first + spec.approach < 0.0 {
             return Err(invalid(
                 "track.approach_length",
                 spec.approach,
                 &format!(
-                    "every wheel and moving force must start on the track: at least {} m (the rearmost axle starts at x = {first} m, 0 = the bridge's left end)",
+                    "every wheel (with its contact patch) and moving force must start on the track: at least {} m (the rearmost axle starts at x = {first} m, 0 = the bridge's left end)",
                     -first
                 ),
             ));
@@ -362,7 +369,7 @@ impl TrackLayer {
                 "track.exit_length",
                 spec.exit,
                 &format!(
-                    "every wheel and moving force must stay on the track until the end of the run: at least {:.6} m (the leading axle reaches x = {reach:.6} m on a {length} m bridge)",
+                    "every wheel (with its contact patch) and moving force must stay on the track until the end of the run: at least {:.6} m (the leading axle reaches x = {reach:.6} m on a {length} m bridge)",
                     reach - length
                 ),
             ));
@@ -466,15 +473,19 @@ impl TrackLayer {
         // u' by a central difference over ±1 µm of the cubic Hermite interpolation).
         if sim.contacts.iter().all(super::contact::is_rigid) {
             let h = 1e-6;
+            let rail_length = track.layout().rail_length();
             for (k, w) in sc.wheels.iter().enumerate() {
                 let x = w.position + approach;
-                let slope = (track
-                    .rail_displacement(x + h, &u_track)
-                    .map_err(track_key)?
-                    - track
-                        .rail_displacement(x - h, &u_track)
-                        .map_err(track_key)?)
-                    / (2.0 * h);
+                // One-sided within h of the rail's ends (a wheel may stand on the end).
+                let (xa, xb, width) = if x - h >= 0.0 && x + h <= rail_length {
+                    (x - h, x + h, 2.0 * h)
+                } else {
+                    let (xa, xb) = ((x - h).max(0.0), (x + h).min(rail_length));
+                    (xa, xb, xb - xa)
+                };
+                let slope = (track.rail_displacement(xb, &u_track).map_err(track_key)?
+                    - track.rail_displacement(xa, &u_track).map_err(track_key)?)
+                    / width;
                 v_sim[sim.wheel_dof[k]] += sc.speed * slope;
                 if let Some(ib) = sim.body_dof[k] {
                     v_sim[ib] += sc.speed * slope;
