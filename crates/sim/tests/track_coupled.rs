@@ -294,6 +294,9 @@ fn rail_beam_key() {
     );
     let rail = parse(&timo).unwrap().track.unwrap().rail;
     assert_eq!(rail, beam::track::RailSection::e60().timoshenko());
+    // Case-insensitive like the other names of [track] (`model`, `rail`).
+    let capital = timo.replace("\"timoshenko\"", "\"Timoshenko\"");
+    assert_eq!(parse(&capital).unwrap().track.unwrap().rail, rail);
     let over = timo.replace(
         "rail_beam = \"timoshenko\"",
         "rail_beam = \"timoshenko\"\nrail_shear_stiffness = 1.5e8\nrail_rotary_inertia = 0.2",
