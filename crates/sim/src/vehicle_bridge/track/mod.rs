@@ -226,8 +226,27 @@ impl Simulation {
         spec: TrackSpec,
     ) -> Result<Self, VehicleBridgeError> {
         let params = alpha_parameters(&scenario.integrator)?;
+        if let Integrator::Structural(StructuralMethod::Newmark { beta, gamma }) =
+            scenario.integrator
+        {
+            // The rail's stiffest modes have ω Δt far beyond any stability limit: Newmark must
+            // be unconditionally stable, 2β ≥ γ ≥ ½ (references.md §D3.5; measured: γ = 0.6
+            // with the default β = 0.25 gave NaN within 0.1 s with the rigid contact and a
+            // failed Hertz contact after 43 steps).
+            if 2.0 * beta < gamma - 1e-12 {
+                return Err(invalid(
+                    "integrator.beta",
+                    beta,
+                    &format!(
+                        "[track] needs an unconditionally stable Newmark method, beta >= gamma/2 = {} (the rail's stiffest modes are far beyond a conditional stability limit); beta = (gamma + 0.5)^2/4 = {} damps the highest frequencies most",
+                        0.5 * gamma,
+                        0.25 * (gamma + 0.5) * (gamma + 0.5)
+                    ),
+                ));
+            }
+        }
         if scenario.contact == ContactModel::Rigid && !dissipative(&params) {
-            const WHY: &str = "the rigid contact on [track] needs a method with numerical dissipation (generalized_alpha with rho_inf < 1, hht with alpha < 0, or newmark with gamma > 0.5): the constraint on the step's displacements makes the trapezoidal rule's contact force oscillate undamped at 2 dt and the wheel chatter";
+            const WHY: &str = "the rigid contact on [track] needs a method with numerical dissipation (generalized_alpha with rho_inf < 1, hht with alpha < 0, or newmark with gamma > 0.5 and beta >= gamma/2): the constraint on the step's displacements makes the trapezoidal rule's contact force oscillate undamped at 2 dt and the wheel chatter";
             // Name the parameter that removes the dissipation where the method has one.
             return Err(match scenario.integrator {
                 Integrator::Structural(StructuralMethod::GeneralizedAlpha { rho_inf }) => {
