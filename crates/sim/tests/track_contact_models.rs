@@ -482,7 +482,7 @@ fn newmark_on_the_track_must_be_unconditionally_stable() {
             .expect("a conditionally stable Newmark is refused")
             .to_string();
         assert!(
-            e.contains("`integrator.beta` = 0.25") && e.contains("beta >= gamma/2 = 0.3"),
+            e.contains("`integrator.beta` = 0.25") && e.contains("beta >= gamma/2 = 0.3000"),
             "{e}"
         );
         let mut sim = simulation(&text.replace("gamma = 0.6", "gamma = 0.6\nbeta = 0.3025"));

@@ -238,7 +238,7 @@ impl Simulation {
                     "integrator.beta",
                     beta,
                     &format!(
-                        "[track] needs an unconditionally stable Newmark method, beta >= gamma/2 = {} (the rail's stiffest modes are far beyond a conditional stability limit); beta = (gamma + 0.5)^2/4 = {} damps the highest frequencies most",
+                        "[track] needs an unconditionally stable Newmark method, beta >= gamma/2 = {:.4} (the rail's stiffest modes are far beyond a conditional stability limit); beta = (gamma + 0.5)^2/4 = {:.4} damps the highest frequencies most",
                         0.5 * gamma,
                         0.25 * (gamma + 0.5) * (gamma + 0.5)
                     ),
