@@ -25,6 +25,29 @@ fn simulation(text: &str) -> Simulation {
     }
 }
 
+/// The error of setting up `text`'s track simulation (`None` if it is accepted).
+fn refusal(text: &str) -> Option<String> {
+    match parse(text) {
+        Ok(c) => Simulation::with_track(c.scenario, c.vehicles, c.track.unwrap())
+            .err()
+            .map(|e| e.to_string()),
+        Err(e) => Some(e.to_string()),
+    }
+}
+
+/// `refused` is refused with an error containing every one of `wants`; `accepted` runs to its
+/// end with a finite, compressive force at the first wheel.
+fn refused_then_runs(refused: &str, wants: &[&str], accepted: &str) {
+    let e = refusal(refused).expect("refused");
+    for want in wants {
+        assert!(e.contains(want), "{want:?} not in {e:?}");
+    }
+    let mut sim = simulation(accepted);
+    sim.run(|_| {}).unwrap();
+    let f = sim.wheels()[0].contact.force;
+    assert!(f.is_finite() && f > 0.0, "{f}");
+}
+
 /// Winkler closed form (Zimmermann; Timoshenko, references.md §D5.3): the deflection of a rail
 /// on a continuous foundation of modulus k under a point force F at distance x,
 /// w(x) = F β/(2k) e^{−β|x|}(cos β|x| + sin β|x|), β = (k/4EI)^{1/4}.
@@ -448,4 +471,105 @@ fn rigid_contact_on_the_track_runs_with_the_default_method() {
     assert!(e.contains("integrator.method"), "{e}");
     let hertz = with_contact("model = \"hertz\"", 0.01).replace("method = \"newmark\"\n", "");
     assert_eq!(parse(&hertz).unwrap().scenario.integrator.name(), "newmark");
+    // Without a method, Newmark's parameters name Newmark, HHT's alpha HHT (it was
+    // generalized-α, which refused them as not its parameters); ρ∞ keeps generalized-α.
+    let with_params =
+        |params: &str| defaulted.replace("[integrator]", &format!("[integrator]\n{params}"));
+    for (params, method) in [
+        ("gamma = 0.6\nbeta = 0.3025", "newmark"),
+        ("alpha = -0.1", "hht"),
+        ("rho_inf = 0.5", "generalized_alpha"),
+    ] {
+        let text = with_params(params);
+        assert_eq!(parse(&text).unwrap().scenario.integrator.name(), method);
+        let mut sim = simulation(&text);
+        for _ in 0..100 {
+            sim.step().unwrap();
+        }
+    }
+}
+
+/// Newmark on the track must be unconditionally stable, 2β ≥ γ ≥ ½ (references.md §D3.5): the
+/// rail's stiffest modes are far beyond a conditional limit. γ = 0.6 with the default β = 0.25
+/// (a dissipative Newmark, the rigid contact's remedy) gave NaN after 943 steps with the
+/// rigid contact and a failed Hertz step after 42 (measured with the CLI on the Manchester
+/// car); refused naming `integrator.beta` and the bound; β = (γ + ½)²/4 runs.
+#[test]
+fn newmark_on_the_track_must_be_unconditionally_stable() {
+    for contact in ["model = \"hertz\"", "model = \"rigid\""] {
+        let text = with_contact(contact, 0.05)
+            .replace("method = \"newmark\"", "method = \"newmark\"\ngamma = 0.6");
+        refused_then_runs(
+            &text,
+            &["`integrator.beta` = 0.25", "beta >= gamma/2 = 0.3000"],
+            &text.replace("gamma = 0.6", "gamma = 0.6\nbeta = 0.3025"),
+        );
+    }
+}
+
+/// A moving force must be on the modelled track for the whole run, like a wheel: one stepping
+/// onto the rail's free start (or off its free end) would load it suddenly, a transient of the
+/// model's boundary (measured with the CLI: a 153.8 kN axle entering the rail's start at
+/// 60 m/s behind a car gave a largest pad force of 178.8 kN, 52.7 kN with a long enough
+/// approach). Refused naming the key and the length needed, for a force behind the car
+/// (approach) and one ahead of it (exit).
+#[test]
+fn moving_forces_off_the_track_are_refused() {
+    // The car first, the force 10 m behind it: the force starts at -19.8 m, the approach is
+    // 15 m (the car at -9.8 m is on it).
+    let behind = example()
+        .replace(
+            "[vehicle]",
+            "[train]\nspeed = 30.0\nposition = -9.8\n[[train.vehicles]]\ntype = \"quarter_car\"\nlength = 10.0\nwheel_mass = 600.0\nbody_mass = 5750.0\nsuspension_stiffness = 1595e3\nsuspension_damping = 2e4\n[[train.vehicles]]\ntype = \"moving_forces\"\nlength = 1.0\naxle_positions = [0.0]\naxle_loads = [1.0e5]\n[vehicle]",
+        )
+        .replace("approach_length = 20.0", "approach_length = 15.0");
+    let start = behind.find("[vehicle]").unwrap();
+    let end = behind.find("[contact]").unwrap();
+    let behind = format!("{}{}", &behind[..start], &behind[end..]);
+    let e = refusal(&behind).expect("a force starting off the track is refused");
+    assert!(
+        e.contains("`track.approach_length` = 15") && e.contains("at least 19.8 m"),
+        "{e}"
+    );
+    // With the approach long enough it runs.
+    assert!(refusal(&behind.replace("approach_length = 15.0", "approach_length = 20.0")).is_none());
+    // The force 20 m ahead of the car: it reaches x = 45 m (20 m beyond the bridge) when the
+    // car leaves the span.
+    let ahead =
+        force_ahead_of_a_car(30.0, 10.2).replace("exit_length = 20.0", "exit_length = 15.0");
+    let e = refusal(&ahead).expect("a force leaving the track is refused");
+    assert!(
+        e.contains("`track.exit_length` = 15") && e.contains("at least 20.0"),
+        "{e}"
+    );
+    assert!(refusal(&ahead.replace("exit_length = 15.0", "exit_length = 21.0")).is_none());
+}
+
+/// A wheel at the rail's start: the rigid wheel's start velocity takes the static rail's slope
+/// one-sided there (it was an error from the central difference reaching 1 µm beyond the
+/// rail); a BEM wheel needs its whole patch on the rail (its column gaps read the rail under
+/// every column: a patch reaching beyond the end was accepted and failed after 12 steps), so
+/// the approach is refused naming the key and the length the patch needs.
+#[test]
+fn a_wheel_at_the_rail_start() {
+    let at_start = |contact: &str, method: &str| {
+        example()
+            .replace("approach_length = 20.0", "approach_length = 10.0")
+            .replace("model = \"hertz\"", contact)
+            .replace(
+                "method = \"newmark\"",
+                &format!("method = \"{method}\"\nduration = 0.01"),
+            )
+    };
+    let mut sim = simulation(&at_start("model = \"rigid\"", "generalized_alpha"));
+    sim.run(|_| {}).unwrap();
+    let f = sim.wheels()[0].contact.force;
+    assert!(f.is_finite() && f > 0.0, "{f}");
+
+    let bem = at_start("model = \"bem\"\ngrid = 16", "newmark");
+    refused_then_runs(
+        &bem,
+        &["`track.approach_length` = 10", "contact patch"],
+        &bem.replace("approach_length = 10.0", "approach_length = 10.01"),
+    );
 }

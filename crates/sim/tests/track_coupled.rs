@@ -122,7 +122,8 @@ fn rigid_static_start_is_exact() {
 /// Real wheel and rail profiles (`[contact.profiles]`, one column at the wheel: the point
 /// path of the track step, as Hertz) on the track: the static start carries the wheel load
 /// (1e-9) and a wheel crawling at 1 µm/s for 0.01 s on the span keeps its force, the rail
-/// displacement under it and the midspan deflection (1e-8).
+/// displacement under it and the midspan deflection (1e-8); the law's solver iterations are
+/// counted in the stats.
 #[test]
 fn profile_contact_on_the_track_starts_static() {
     let text = example()
@@ -142,6 +143,15 @@ fn profile_contact_on_the_track_starts_static() {
     assert!((sim.wheels()[0].contact.force / weight - 1.0).abs() < 1e-9);
     let changes = crawl(&mut sim);
     assert!(changes.iter().all(|c| *c < 1e-8), "{changes:?}");
+    // The profile law's half-space solves are counted (the summary's contact-solver
+    // iterations): at least one solve with at least one iteration per step.
+    let stats = sim.stats();
+    assert!(
+        stats.steps > 0 && stats.contact_iterations >= stats.steps,
+        "{} contact-solver iterations in {} steps",
+        stats.contact_iterations,
+        stats.steps
+    );
 }
 
 /// The example's car replaced by two cars at the same position with half of its masses,
@@ -284,6 +294,9 @@ fn rail_beam_key() {
     );
     let rail = parse(&timo).unwrap().track.unwrap().rail;
     assert_eq!(rail, beam::track::RailSection::e60().timoshenko());
+    // Case-insensitive like the other names of [track] (`model`, `rail`).
+    let capital = timo.replace("\"timoshenko\"", "\"Timoshenko\"");
+    assert_eq!(parse(&capital).unwrap().track.unwrap().rail, rail);
     let over = timo.replace(
         "rail_beam = \"timoshenko\"",
         "rail_beam = \"timoshenko\"\nrail_shear_stiffness = 1.5e8\nrail_rotary_inertia = 0.2",
@@ -323,6 +336,19 @@ fn refusals_name_the_key() {
         (
             base.replace("model = \"hertz\"", "model = \"rigid\""),
             "`integrator.method` = \"newmark\": the rigid contact on [track] needs a method with numerical dissipation",
+        ),
+        (
+            base.replace("model = \"hertz\"", "model = \"rigid\"")
+                .replace(
+                    "method = \"newmark\"",
+                    "method = \"generalized_alpha\"\nrho_inf = 1.0",
+                ),
+            "`integrator.rho_inf` = 1: the rigid contact on [track] needs a method with numerical dissipation",
+        ),
+        (
+            base.replace("model = \"hertz\"", "model = \"rigid\"")
+                .replace("method = \"newmark\"", "method = \"hht\"\nalpha = 0.0"),
+            "`integrator.alpha` = 0: the rigid contact on [track] needs a method with numerical dissipation",
         ),
         (
             base.replace("method = \"newmark\"", "method = \"backward_euler\""),
@@ -401,6 +427,15 @@ fn refusals_name_the_key() {
             )
             .replace("rail = \"60E1\"\n", ""),
             "[track] `rail_beam` does not apply to model = \"none\"",
+        ),
+        (
+            base.replace("model = \"hertz\"", "model = \"rigid\"")
+                .replace(
+                    "rail = \"60E1\"",
+                    "rail = \"60E1\"\nrail_beam = \"timoshenko\"",
+                )
+                .replace("method = \"newmark\"", "method = \"generalized_alpha\""),
+            "`contact.model` = \"rigid\": the rigid contact cannot ride on track.rail_beam = \"timoshenko\"",
         ),
     ];
     for (text, want) in cases {

@@ -293,7 +293,8 @@ fn rail(t: &TrackToml) -> Result<RailSection, ConfigError> {
         invalid!("[track] `rail` = \"{rail_name}\": expected \"60E1\", \"54E1\" or \"CHN60\"")
     })?;
     let beam_name = t.rail_beam.as_deref().unwrap_or("euler_bernoulli");
-    let beam = RailBeam::by_name(beam_name.trim()).ok_or_else(|| {
+    // Case-insensitive like `model` and `rail`.
+    let beam = RailBeam::by_name(&beam_name.trim().to_ascii_lowercase()).ok_or_else(|| {
         invalid!(
             "[track] `rail_beam` = \"{beam_name}\": expected \"euler_bernoulli\" or \"timoshenko\""
         )

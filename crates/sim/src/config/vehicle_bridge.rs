@@ -33,7 +33,8 @@ pub const DEFAULT_METHOD: &str = "newmark";
 /// Default structural method of a rigid contact on a `[track]`: there the constraint acts on
 /// the step's displacements, which needs numerical dissipation (`Simulation::with_track`
 /// refuses the trapezoidal rule, whose contact force oscillates undamped at 2 Δt there), so
-/// the default is the generalized-α method with its default ρ∞.
+/// the default is the generalized-α method with its default ρ∞ (unless Newmark's `beta`/`gamma`
+/// or HHT's `alpha` are given: they name their method).
 pub const DEFAULT_METHOD_RIGID_TRACK: &str = "generalized_alpha";
 /// Default time step \[s\], the longest default: a compliant contact shortens it to
 /// [`DEFAULT_DT_CONTACT`] / f_c (see [`default_dt`]).
@@ -316,14 +317,22 @@ pub fn build_in(file: VehicleBridgeFile, base: &Path) -> Result<VehicleBridgeCon
 
     let integ = file.integrator.as_ref();
     let rigid_on_track = matches!(contact, ContactModel::Rigid)
-        && file.track.as_ref().is_some_and(|t| t.model != "none");
-    let method_name = integ
-        .and_then(|i| i.method.as_deref())
-        .unwrap_or(if rigid_on_track {
-            DEFAULT_METHOD_RIGID_TRACK
-        } else {
+        && file
+            .track
+            .as_ref()
+            .is_some_and(|t| !t.model.trim().eq_ignore_ascii_case("none"));
+    // Without a method, parameters of the Newmark family (beta, gamma) or HHT's alpha name
+    // their method on the track too (gamma = 0.6 alone is a dissipative Newmark).
+    let given = |f: fn(&IntegratorSpec) -> Option<f64>| integ.and_then(f).is_some();
+    let method_name = integ.and_then(|i| i.method.as_deref()).unwrap_or(
+        if !rigid_on_track || given(|i| i.beta) || given(|i| i.gamma) {
             DEFAULT_METHOD
-        });
+        } else if given(|i| i.alpha) {
+            "hht"
+        } else {
+            DEFAULT_METHOD_RIGID_TRACK
+        },
+    );
     let params = StructuralParameters {
         beta: integ.and_then(|i| i.beta),
         gamma: integ.and_then(|i| i.gamma),

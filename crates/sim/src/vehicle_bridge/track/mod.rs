@@ -50,11 +50,12 @@ mod patch;
 mod step;
 
 use beam::track::{
-    RailPoint, RailSection, SparseCholesky, SparseReach, Track, TrackLayout, TrackSupports,
+    RailBeam, RailPoint, RailSection, SparseCholesky, SparseReach, Track, TrackLayout,
+    TrackSupports,
 };
 use faer::sparse::Triplet;
-use integrate::structural::AlphaParameters;
 use integrate::structural::sparse::SparseMatrix;
+use integrate::structural::{AlphaParameters, StructuralMethod};
 
 use halfspace::law::{ContactModel as LawModel, LawOutput};
 
@@ -225,11 +226,48 @@ impl Simulation {
         spec: TrackSpec,
     ) -> Result<Self, VehicleBridgeError> {
         let params = alpha_parameters(&scenario.integrator)?;
+        if let Integrator::Structural(StructuralMethod::Newmark { beta, gamma }) =
+            scenario.integrator
+        {
+            // The rail's stiffest modes have ω Δt far beyond any stability limit: Newmark must
+            // be unconditionally stable, 2β ≥ γ ≥ ½ (references.md §D3.5; measured: γ = 0.6
+            // with the default β = 0.25 gave NaN within 0.1 s with the rigid contact and a
+            // failed Hertz contact after 43 steps).
+            if 2.0 * beta < gamma - 1e-12 {
+                return Err(invalid(
+                    "integrator.beta",
+                    beta,
+                    &format!(
+                        "[track] needs an unconditionally stable Newmark method, beta >= gamma/2 = {:.4} (the rail's stiffest modes are far beyond a conditional stability limit); beta = (gamma + 0.5)^2/4 = {:.4} damps the highest frequencies most",
+                        0.5 * gamma,
+                        0.25 * (gamma + 0.5) * (gamma + 0.5)
+                    ),
+                ));
+            }
+        }
         if scenario.contact == ContactModel::Rigid && !dissipative(&params) {
+            const WHY: &str = "the rigid contact on [track] needs a method with numerical dissipation (generalized_alpha with rho_inf < 1, hht with alpha < 0, or newmark with gamma > 0.5 and beta >= gamma/2): the constraint on the step's displacements makes the trapezoidal rule's contact force oscillate undamped at 2 dt and the wheel chatter";
+            // Name the parameter that removes the dissipation where the method has one.
+            return Err(match scenario.integrator {
+                Integrator::Structural(StructuralMethod::GeneralizedAlpha { rho_inf }) => {
+                    invalid("integrator.rho_inf", rho_inf, WHY)
+                }
+                Integrator::Structural(StructuralMethod::Hht { alpha }) => {
+                    invalid("integrator.alpha", alpha, WHY)
+                }
+                _ => invalid_text("integrator.method", scenario.integrator.name(), WHY),
+            });
+        }
+        if scenario.contact == ContactModel::Rigid && spec.rail.beam() == RailBeam::Timoshenko {
+            // The element's displacement interpolation has a slope jump at every node (its
+            // shear strain is constant per element) that a rigid wheel must follow: a velocity
+            // jump, so an impulse, at each node it passes (measured: the Manchester car at
+            // 70 m/s, 54E1, 8 elements per bay: 177 losses of contact, 248 kN against 101–117 kN
+            // on the Euler–Bernoulli rail); the compliant contacts filter it.
             return Err(invalid_text(
-                "integrator.method",
-                scenario.integrator.name(),
-                "the rigid contact on [track] needs a method with numerical dissipation (generalized_alpha with rho_inf < 1, hht with alpha < 0, or newmark with gamma > 0.5): the constraint on the step's displacements makes the trapezoidal rule's contact force oscillate undamped at 2 dt and the wheel chatter",
+                "contact.model",
+                "rigid",
+                "the rigid contact cannot ride on track.rail_beam = \"timoshenko\" (the element's slope jumps at the nodes give the wheel an impulse at every node it passes): use contact.model = \"hertz\" or \"bem\", or rail_beam = \"euler_bernoulli\"",
             ));
         }
         if scenario.coupling.solver == CouplingSolver::Picard {
@@ -314,23 +352,32 @@ impl TrackLayer {
         let layout = TrackLayout::new(spec.approach, length, spec.exit, spec.sleeper_spacing)
             .and_then(|l| l.with_elements_per_bay(spec.elements_per_bay))
             .map_err(track_key)?;
-        // Every wheel on the track for the whole run.
-        let first = sc
-            .wheels
-            .iter()
-            .map(|w| w.position)
-            .fold(f64::INFINITY, f64::min);
-        let last = sc
-            .wheels
-            .iter()
-            .map(|w| w.position)
-            .fold(f64::NEG_INFINITY, f64::max);
+        // Every wheel and every moving force on the track for the whole run: a moving force
+        // stepping onto (or off) the free end of the modelled rail would load (or unload) it
+        // suddenly, a transient of the model's boundary that the real track, continuing beyond it,
+        // does not have (measured: a 153.8 kN axle entering the rail's start at 60 m/s, the
+        // largest pad force 178.8 kN against 52.7 kN with the rail 55 m longer).
+        // A wheel's extent is its contact patch's (the grid columns of a BEM law, ±|ξ|max): the
+        // patch's gap reads the rail under every column (module `patch`).
+        let extent = |k: usize| match &sim.contacts[k] {
+            LawModel::Law(law) => law.columns().iter().fold(0.0f64, |m, c| m.max(c.abs())),
+            _ => 0.0,
+        };
+        let positions = || {
+            sc.wheels
+                .iter()
+                .enumerate()
+                .map(|(k, w)| (w.position - extent(k), w.position + extent(k)))
+                .chain(sc.moving_forces.iter().map(|p| (p.position, p.position)))
+        };
+        let first = positions().map(|p| p.0).fold(f64::INFINITY, f64::min);
+        let last = positions().map(|p| p.1).fold(f64::NEG_INFINITY, f64::max);
         if first + spec.approach < 0.0 {
             return Err(invalid(
                 "track.approach_length",
                 spec.approach,
                 &format!(
-                    "every wheel must start on the track: at least {} m (the first wheel starts at x = {first} m, 0 = the bridge's left end)",
+                    "every wheel (with its contact patch) and moving force must start on the track: at least {} m (the rearmost axle starts at x = {first} m, 0 = the bridge's left end)",
                     -first
                 ),
             ));
@@ -341,7 +388,7 @@ impl TrackLayer {
                 "track.exit_length",
                 spec.exit,
                 &format!(
-                    "every wheel must stay on the track until the end of the run: at least {:.6} m (the leading wheel reaches x = {reach:.6} m on a {length} m bridge)",
+                    "every wheel (with its contact patch) and moving force must stay on the track until the end of the run: at least {:.6} m (the leading axle reaches x = {reach:.6} m on a {length} m bridge)",
                     reach - length
                 ),
             ));
@@ -445,15 +492,19 @@ impl TrackLayer {
         // u' by a central difference over ±1 µm of the cubic Hermite interpolation).
         if sim.contacts.iter().all(super::contact::is_rigid) {
             let h = 1e-6;
+            let rail_length = track.layout().rail_length();
             for (k, w) in sc.wheels.iter().enumerate() {
                 let x = w.position + approach;
-                let slope = (track
-                    .rail_displacement(x + h, &u_track)
-                    .map_err(track_key)?
-                    - track
-                        .rail_displacement(x - h, &u_track)
-                        .map_err(track_key)?)
-                    / (2.0 * h);
+                // One-sided within h of the rail's ends (a wheel may stand on the end).
+                let (xa, xb, width) = if x - h >= 0.0 && x + h <= rail_length {
+                    (x - h, x + h, 2.0 * h)
+                } else {
+                    let (xa, xb) = ((x - h).max(0.0), (x + h).min(rail_length));
+                    (xa, xb, xb - xa)
+                };
+                let slope = (track.rail_displacement(xb, &u_track).map_err(track_key)?
+                    - track.rail_displacement(xa, &u_track).map_err(track_key)?)
+                    / width;
                 v_sim[sim.wheel_dof[k]] += sc.speed * slope;
                 if let Some(ib) = sim.body_dof[k] {
                     v_sim[ib] += sc.speed * slope;

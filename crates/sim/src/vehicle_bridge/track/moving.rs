@@ -1,9 +1,9 @@
 //! Moving forces on the track (the `moving_forces` vehicles of `[train]`; module
 //! [`moving_forces`](super::super::moving_forces)): each axle load F_p at x_p + c t loads the
 //! rail through the consistent (Hermite) load vector of the element under it, the same vector
-//! b(x) through which a wheel's contact force loads the rail (references.md §D5.2). Off the
-//! modelled track (before the approach, after the exit) a force stands on rigid ground and
-//! loads nothing, as a force off the span does without the track.
+//! b(x) through which a wheel's contact force loads the rail (references.md §D5.2). The track
+//! layer refuses a force that is off the modelled track at any time of the run (its free ends
+//! would take it as a sudden load); the range check below only guards the rail's ends.
 
 use beam::track::Track;
 

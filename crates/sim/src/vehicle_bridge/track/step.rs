@@ -35,8 +35,10 @@ fn contact_forces(
         g_trial,
         out_trial,
         lu,
+        law_iterations,
         ..
     } = work;
+    *law_iterations = 0;
     let mut cf = [0.0];
     let mut eval =
         |f: &[f64], g: &mut [f64], out: &mut [LawOutput]| -> Result<f64, VehicleBridgeError> {
@@ -49,6 +51,7 @@ fn contact_forces(
                 out[c] = law
                     .evaluate(delta, &[0.0], &mut cf, true)
                     .map_err(wheel_error(c))?;
+                *law_iterations += out[c].iterations;
                 g[c] = f[c] - out[c].force;
                 worst = worst.max(g[c].abs());
             }
@@ -131,6 +134,9 @@ pub(super) struct NewtonWork {
     delta0: Vec<f64>,
     cap: Vec<f64>,
     forces: Vec<f64>,
+    /// The contact solver's iterations over the law evaluations of the last solve (the
+    /// profile law's half-space solves; 0 for the closed-form Hertz law).
+    law_iterations: usize,
 }
 
 impl NewtonWork {
@@ -146,6 +152,7 @@ impl NewtonWork {
             delta0: vec![0.0; k],
             cap: vec![0.0; k * k],
             forces: vec![0.0; k],
+            law_iterations: 0,
         }
     }
 
@@ -358,6 +365,7 @@ impl Simulation {
             )
             .map(|(iterations, _change)| iterations)
         };
+        self.stats.contact_iterations += l.newton.law_iterations;
         let iterations = solved?;
         for k in 0..nw {
             let f = s * forces[k];
