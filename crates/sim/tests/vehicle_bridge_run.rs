@@ -227,3 +227,40 @@ fn sampled_summary_matches_the_recorded_rows() {
         summary.max_quasi_static_deflection
     );
 }
+
+/// The reference of the DAF's threshold is the closed form of the heaviest load standing at the
+/// output point, W L³/(48 EI) at midspan (12-mode truncation, 1.5e-4). A run that ends as the
+/// first wheel reaches the span (0.1 s from 3 m before it: 2e-15 m of travel on it, as in a
+/// review's scenario whose DAF printed 3.3e11) gives no DAF; the same wheel run to midspan
+/// does (between 1 and 1.2, as above).
+#[test]
+fn no_dynamic_amplification_before_the_loads_reach_the_span() {
+    let one_wheel = |duration: f64| {
+        let mut sc = scenario();
+        sc.wheels.truncate(1);
+        sc.wheels[0].position = -3.0;
+        sc.irregularity = Irregularity::None;
+        sc.duration = Some(duration);
+        Simulation::new(sc).unwrap()
+    };
+    let mut sim = one_wheel(0.1);
+    let reference = sim.quasi_static_reference_deflection().unwrap();
+    let closed = sim.static_loads()[0] * L.powi(3) / (48.0 * EI);
+    assert!(
+        (reference / closed - 1.0).abs() < 1.5e-4,
+        "{reference} vs {closed}"
+    );
+    let summary = run::run(&mut sim, &mut |_: &Simulation, _: StepInfo| {
+        ControlFlow::Continue(())
+    })
+    .unwrap();
+    assert!(summary.completed);
+    assert_eq!(summary.dynamic_amplification, None, "{summary:?}");
+    let mut sim = one_wheel(0.6);
+    let summary = run::run(&mut sim, &mut |_: &Simulation, _: StepInfo| {
+        ControlFlow::Continue(())
+    })
+    .unwrap();
+    let daf = summary.dynamic_amplification.unwrap();
+    assert!(daf > 1.0 && daf < 1.2, "DAF {daf}");
+}

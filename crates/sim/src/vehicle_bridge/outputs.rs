@@ -154,6 +154,27 @@ impl Simulation {
         Ok(Some(total))
     }
 
+    /// The quasi-static deflection at the output point under the heaviest static load (a
+    /// wheel's or a moving force's) standing at the output point,
+    /// `W_max Σ_j w_j(x_out)²/(m_j ω_j²)` \[m\]: the scale below which the quasi-static
+    /// deflection of a run is too small for a dynamic amplification (`None` as for
+    /// [`Self::quasi_static_output_deflection`]).
+    pub fn quasi_static_reference_deflection(&self) -> Option<f64> {
+        let weights = self.quasi_static_weights.as_deref()?;
+        let heaviest = self
+            .static_loads
+            .iter()
+            .copied()
+            .chain(self.scenario.moving_forces.iter().map(|f| f.force))
+            .fold(0.0_f64, |m, w| m.max(w.abs()));
+        let influence: f64 = weights
+            .iter()
+            .zip(&self.output_shapes)
+            .map(|(c, w)| c * w)
+            .sum();
+        Some(heaviest * influence)
+    }
+
     /// The weights `w_j(x_out)/(m_j ω_j²)` of [`Self::quasi_static_output_deflection`]
     /// (`None` if the basis has a rigid-body mode, ω_j = 0).
     pub(super) fn quasi_static_weights(

@@ -113,6 +113,12 @@ pub struct WheelSummary {
     pub loss_of_contact_events: usize,
 }
 
+/// Smallest largest quasi-static deflection at the output point, relative to that of the
+/// heaviest static load standing there ([`Simulation::quasi_static_reference_deflection`]),
+/// for which [`RunSummary::dynamic_amplification`] is given (0.1 %: below it the loads have
+/// barely reached the span and the ratio of two near-zero deflections means nothing).
+pub const DAF_MIN_LOADING: f64 = 1e-3;
+
 /// The result of [`run`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunSummary {
@@ -134,7 +140,8 @@ pub struct RunSummary {
     /// (`None` for a basis with a rigid-body mode).
     pub max_quasi_static_deflection: Option<f64>,
     /// `max |w| / max |w_qs|` at the output point (`None` without a positive quasi-static
-    /// deflection).
+    /// deflection, or when it stayed below [`DAF_MIN_LOADING`] of the heaviest load's
+    /// quasi-static deflection at the output point).
     pub dynamic_amplification: Option<f64>,
     /// Per wheel.
     pub wheels: Vec<WheelSummary>,
@@ -397,9 +404,13 @@ impl Recorder {
         s.accuracy
             .after_run(sim, &s.wheels, s.loss_of_contact_events);
         s.completed = completed;
+        // Only when the loads have deflected the output point quasi-statically by more than
+        // DAF_MIN_LOADING of what the heaviest load standing there would: a run that ends
+        // as the first load enters the span has q ≈ 0 and no meaningful ratio.
+        let reference = sim.quasi_static_reference_deflection().unwrap_or(0.0);
         s.dynamic_amplification = s
             .max_quasi_static_deflection
-            .filter(|q| *q > 0.0)
+            .filter(|q| *q > 0.0 && *q > DAF_MIN_LOADING * reference)
             .map(|q| s.deflection.max_abs() / q);
         self.summary
     }
