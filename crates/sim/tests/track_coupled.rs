@@ -411,7 +411,14 @@ fn refusals_name_the_key() {
                 "rail = \"60E1\"",
                 "rail = \"60E1\"\nrail_beam = \"timoshenko\"\nrail_shear_stiffness = -2e8",
             ),
-            "`track.rail_shear_stiffness` = -2e8: must lie in [1000, 1e16] N",
+            "`track.rail_shear_stiffness` = -2e8: must lie in [1e6, 1e16] N",
+        ),
+        (
+            base.replace(
+                "rail = \"60E1\"",
+                "rail = \"60E1\"\nrail_beam = \"timoshenko\"\nrail_shear_stiffness = 1e3",
+            ),
+            "`track.rail_shear_stiffness` = 1000: must lie in [1e6, 1e16] N",
         ),
         (
             base.replace(
