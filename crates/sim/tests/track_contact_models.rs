@@ -4,25 +4,16 @@
 //! closed form, the Winkler closed form, the limit of a stiff Hertz spring, the exact modal
 //! moving-load solution).
 
-use std::path::Path;
-
 use beam::track::RailSection;
 use sim::config::vehicle_bridge::parse;
-use sim::config::{self, LoadOptions, ScenarioConfig};
 use sim::vehicle_bridge::Simulation;
+
+mod support;
+use support::simulation;
 
 /// The track example's scenario text.
 fn example() -> String {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples/track_quarter_car.toml");
-    std::fs::read_to_string(path).unwrap()
-}
-
-fn simulation(text: &str) -> Simulation {
-    let c = parse(text).unwrap();
-    match c.track {
-        Some(t) => Simulation::with_track(c.scenario, c.vehicles, t).unwrap(),
-        None => Simulation::with_vehicles(c.scenario, c.vehicles).unwrap(),
-    }
+    support::example("track_quarter_car.toml")
 }
 
 /// The error of setting up `text`'s track simulation (`None` if it is accepted).
@@ -299,19 +290,7 @@ fn moving_forces_on_a_stiff_track_converge_to_moving_load() {
             "kind = \"moving_load\"\n{}[load]\nspeed = 60.0\naxles = [[0.0, 1.7e5]]\n",
             BRIDGE.replace("8.323e9", &format!("{ei:e}"))
         );
-        let m = match config::load(&text, Path::new("."), &LoadOptions::default()).unwrap() {
-            ScenarioConfig::MovingLoad(m) => *m,
-            _ => panic!("not moving_load"),
-        };
-        let settings = beam::MovingLoadSettings::new(dt, 0.1);
-        beam::simulate_moving_loads(
-            m.bridge.basis.as_ref(),
-            &m.bridge.damping,
-            &m.loads,
-            &settings,
-            &[12.5],
-        )
-        .unwrap()
+        support::moving_load_response(&text, dt, 0.1, &[12.5])
     };
     let peak = reference
         .deflection

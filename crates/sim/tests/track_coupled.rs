@@ -7,19 +7,12 @@
 use sim::config::vehicle_bridge::parse;
 use sim::vehicle_bridge::Simulation;
 
+mod support;
+use support::simulation;
+
 /// The example's scenario text.
 fn example() -> String {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../examples/track_quarter_car.toml");
-    std::fs::read_to_string(path).unwrap()
-}
-
-fn simulation(text: &str) -> Simulation {
-    let c = parse(text).unwrap();
-    match c.track {
-        Some(t) => Simulation::with_track(c.scenario, c.vehicles, t).unwrap(),
-        None => Simulation::with_vehicles(c.scenario, c.vehicles).unwrap(),
-    }
+    support::example("track_quarter_car.toml")
 }
 
 fn error(text: &str) -> String {

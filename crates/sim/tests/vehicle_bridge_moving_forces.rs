@@ -6,8 +6,7 @@
 
 use std::path::Path;
 
-use sim::config::{self, LoadOptions, ScenarioConfig};
-use sim::vehicle_bridge::Simulation;
+use sim::config::{self, LoadOptions};
 
 const BRIDGE: &str = "[bridge]\nlength = 25.0\nEI = 8.323e9\nmass_per_length = 2303.0\nsupports = \"simply_supported\"\nmodes = 6\ndamping_ratio = 0.02\n";
 
@@ -19,14 +18,8 @@ fn forces_ahead_of_a_car(dt: f64) -> String {
     )
 }
 
-fn simulation(text: &str) -> Simulation {
-    match config::load(text, Path::new("."), &LoadOptions::default()).unwrap() {
-        ScenarioConfig::VehicleBridge(v) => {
-            Simulation::with_vehicles(v.scenario, v.vehicles).unwrap()
-        }
-        _ => panic!("not vehicle_bridge"),
-    }
-}
+mod support;
+use support::simulation;
 
 /// The midspan deflection history (t, w).
 fn history(text: &str) -> Vec<(f64, f64)> {
@@ -42,19 +35,7 @@ fn exact(dt: f64) -> beam::MovingLoadResponse {
     let text = format!(
         "kind = \"moving_load\"\n{BRIDGE}[load]\nspeed = 60.0\naxles = [[0.0, 1.7e5], [3.0, 1.7e5]]\n"
     );
-    let m = match config::load(&text, Path::new("."), &LoadOptions::default()).unwrap() {
-        ScenarioConfig::MovingLoad(m) => *m,
-        _ => panic!("not moving_load"),
-    };
-    let settings = beam::MovingLoadSettings::new(dt, 0.6 - 28.0 / 60.0);
-    beam::simulate_moving_loads(
-        m.bridge.basis.as_ref(),
-        &m.bridge.damping,
-        &m.loads,
-        &settings,
-        &[12.5],
-    )
-    .unwrap()
+    support::moving_load_response(&text, dt, 0.6 - 28.0 / 60.0, &[12.5])
 }
 
 /// max_t |w(t) − w_exact(t)| / max_t |w_exact| over the common samples.

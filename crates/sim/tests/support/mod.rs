@@ -1,6 +1,8 @@
 //! Test fixtures shared by the `sim` integration tests (`mod support;` in each test file):
-//! reading scenario texts, running a sweep's passages, building a vehicle–bridge simulation
-//! with its vehicles, and the closed-form static influence line of a simply supported span.
+//! reading scenario texts and the examples, running a sweep's passages, building a
+//! vehicle–bridge simulation with its vehicles (and its track), the exact moving-load response
+//! of a `kind = "moving_load"` text, and the closed-form static influence line of a simply
+//! supported span.
 // Each test crate uses a subset of these helpers.
 #![allow(dead_code)]
 
@@ -37,14 +39,47 @@ pub fn passages(c: &SweepConfig) -> Vec<Passage> {
     .unwrap()
 }
 
-/// A `kind = "vehicle_bridge"` text as a simulation with its vehicles (panics on an error).
+/// The text of `examples/NAME` of the repository.
+pub fn example(name: &str) -> String {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../examples")
+        .join(name);
+    std::fs::read_to_string(path).unwrap()
+}
+
+/// A `kind = "vehicle_bridge"` text as a simulation with its vehicles, and its track when it
+/// has one (panics on an error).
 pub fn simulation(text: &str) -> Simulation {
     match load(text).unwrap_or_else(|e| panic!("{e}")) {
-        ScenarioConfig::VehicleBridge(v) => {
-            Simulation::with_vehicles(v.scenario, v.vehicles).unwrap()
-        }
+        ScenarioConfig::VehicleBridge(v) => match v.track {
+            Some(t) => Simulation::with_track(v.scenario, v.vehicles, t).unwrap(),
+            None => Simulation::with_vehicles(v.scenario, v.vehicles).unwrap(),
+        },
         _ => panic!("not vehicle_bridge"),
     }
+}
+
+/// The exact modal moving-load response (`beam::simulate_moving_loads`) of a
+/// `kind = "moving_load"` text at step `dt` for `duration` s at the output `points` \[m\].
+pub fn moving_load_response(
+    text: &str,
+    dt: f64,
+    duration: f64,
+    points: &[f64],
+) -> beam::MovingLoadResponse {
+    let m = match load(text).unwrap_or_else(|e| panic!("{e}")) {
+        ScenarioConfig::MovingLoad(m) => *m,
+        _ => panic!("not moving_load"),
+    };
+    let settings = beam::MovingLoadSettings::new(dt, duration);
+    beam::simulate_moving_loads(
+        m.bridge.basis.as_ref(),
+        &m.bridge.damping,
+        &m.loads,
+        &settings,
+        points,
+    )
+    .unwrap()
 }
 
 /// Midspan deflection of a simply supported span (length `l`, bending stiffness `ei`) under
