@@ -44,8 +44,27 @@ pub fn bad_input(e: anyhow::Error) -> anyhow::Error {
     if is_bad_input(&e) {
         e
     } else {
-        BadInput::error(format!("{e:#}"))
+        BadInput::error(error_text(&e))
     }
+}
+
+/// The error's message with its causes, `outer: cause: …`, each text once.
+///
+/// The libraries' errors often repeat their cause in their own message ("bridge: {0}" over
+/// a `#[from]` source, so that a plain `{e}` is complete); anyhow's `{e:#}` would then print
+/// the cause twice. A cause whose text the message so far already ends with is skipped.
+pub fn error_text(e: &anyhow::Error) -> String {
+    let mut text = String::new();
+    for cause in e.chain() {
+        let part = cause.to_string();
+        if text.is_empty() {
+            text = part;
+        } else if !text.ends_with(&part) {
+            text.push_str(": ");
+            text.push_str(&part);
+        }
+    }
+    text
 }
 
 fn is_bad_input(e: &anyhow::Error) -> bool {
@@ -76,5 +95,37 @@ mod tests {
         let run = anyhow::anyhow!("step 3 of 10: Newton did not converge");
         assert_eq!(exit_code(&run), EXIT_RUN_FAILED);
         assert_eq!(exit_code(&bad_input(run)), EXIT_BAD_INPUT);
+    }
+
+    #[derive(Debug, thiserror::Error)]
+    #[error("singular matrix")]
+    struct Inner;
+
+    #[derive(Debug, thiserror::Error)]
+    enum Outer {
+        #[error("bridge: {0}")]
+        Prefixed(#[from] Inner),
+        #[error("{0}")]
+        Plain(#[source] Inner),
+        #[error("wheel 3")]
+        Bare(#[source] Inner),
+    }
+
+    #[test]
+    fn error_text_prints_each_cause_once() {
+        let prefixed = anyhow::Error::from(Outer::Prefixed(Inner)).context("running x.toml");
+        assert_eq!(
+            format!("{prefixed:#}"),
+            "running x.toml: bridge: singular matrix: singular matrix"
+        );
+        assert_eq!(
+            error_text(&prefixed),
+            "running x.toml: bridge: singular matrix"
+        );
+        let plain = anyhow::Error::from(Outer::Plain(Inner));
+        assert_eq!(error_text(&plain), "singular matrix");
+        let bare = anyhow::Error::from(Outer::Bare(Inner));
+        assert_eq!(error_text(&bare), "wheel 3: singular matrix");
+        assert_eq!(exit_code(&bad_input(prefixed)), EXIT_BAD_INPUT);
     }
 }

@@ -226,7 +226,7 @@ fn main() {
     restore_default_sigpipe();
     interrupt::install();
     if let Err(e) = run_cli() {
-        eprintln!("error: {e:#}");
+        eprintln!("error: {}", errors::error_text(&e));
         std::process::exit(errors::exit_code(&e));
     }
     std::process::exit(errors::EXIT_OK);

@@ -292,7 +292,7 @@ pub fn simulate_full(
         recorder.record(&sim, 0)?;
     }
     let stopped_by = match &failure {
-        Some(e) => Some(format!("{e:#}")),
+        Some(e) => Some(crate::errors::error_text(e)),
         None if !run.completed => Some("interrupt (SIGINT or SIGTERM)".to_string()),
         None => None,
     };
@@ -605,7 +605,7 @@ pub fn bench(default_scenario: &str) -> Result<()> {
                     s.contact.full_solves.unwrap_or(0)
                 );
             }
-            Err(e) => println!("{solver:>13} failed: {e:#}"),
+            Err(e) => println!("{solver:>13} failed: {}", crate::errors::error_text(&e)),
         }
     }
     bench_bem_train(default_scenario)
