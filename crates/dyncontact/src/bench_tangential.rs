@@ -1,8 +1,9 @@
 //! `dyncontact bench tangential`: steady rolling of CONTACT's `tractcurv` ellipse with
-//! creepage prescribed, by the default Newton–Krylov solver (upstream line preconditioner),
-//! the same with the Jacobi preconditioner and the Gauss–Seidel reference: a 44 × 44 table
-//! over ξ (cold and warm starts), the cost against the grid size (44² … 400²: time,
-//! iterations, operator products and FFT convolutions per solve), the 41-point
+//! creepage prescribed, by the default Newton–Krylov solver (upstream line preconditioner,
+//! nested start), the same from zero tractions, with the Jacobi preconditioner and the
+//! Gauss–Seidel reference: a 44 × 44 table over ξ (cold and warm starts), the cost against
+//! the grid size (44² … 400²: wall and CPU time, iterations, operator products on the fine
+//! and on the coarse grids per solve), the 41-point
 //! creep curve at 44 × 44, and the shift and transient-rolling solves (which the steady
 //! solver does not touch) for before/after comparisons.
 
@@ -45,29 +46,39 @@ fn tractcurv(n: usize) -> Result<(Grid, Material, NormalSolution, Hertz)> {
 /// reference.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Solver {
+    Nested,
     Line,
     Jacobi,
     GaussSeidel,
 }
 
-const SOLVERS: [Solver; 3] = [Solver::Line, Solver::Jacobi, Solver::GaussSeidel];
+const SOLVERS: [Solver; 4] = [
+    Solver::Nested,
+    Solver::Line,
+    Solver::Jacobi,
+    Solver::GaussSeidel,
+];
 
 fn options(solver: Solver) -> TangentialOptions {
     let (steady_solver, nk_preconditioner) = match solver {
-        Solver::Line => (SteadySolver::NewtonKrylov, NkPreconditioner::UpstreamLine),
+        Solver::Nested | Solver::Line => {
+            (SteadySolver::NewtonKrylov, NkPreconditioner::UpstreamLine)
+        }
         Solver::Jacobi => (SteadySolver::NewtonKrylov, NkPreconditioner::Jacobi),
         Solver::GaussSeidel => (SteadySolver::GaussSeidel, NkPreconditioner::default()),
     };
     TangentialOptions {
         steady_solver,
         nk_preconditioner,
+        nested_start: solver == Solver::Nested,
         ..Default::default()
     }
 }
 
 fn name(solver: Solver) -> &'static str {
     match solver {
-        Solver::Line => "NK",
+        Solver::Nested => "NK",
+        Solver::Line => "NK-0",
         Solver::Jacobi => "NK-J",
         Solver::GaussSeidel => "GS",
     }
@@ -79,6 +90,27 @@ fn creep(xi: f64) -> RollingLoad {
         eta: 0.0,
         phi: 0.0,
     })
+}
+
+/// CPU time of all threads of this process \[s\] (Linux: the sum of
+/// /proc/self/task/*/schedstat, nanoseconds on a CPU; the FFTs run on rayon's threads), or NaN
+/// where unavailable. On a shared machine the wall time includes waiting for a core; the CPU
+/// time does not.
+fn process_cpu_s() -> f64 {
+    let Ok(tasks) = std::fs::read_dir("/proc/self/task") else {
+        return f64::NAN;
+    };
+    let mut ns = 0.0;
+    for task in tasks.flatten() {
+        let path = task.path().join("schedstat");
+        if let Some(t) = std::fs::read_to_string(path)
+            .ok()
+            .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
+        {
+            ns += t;
+        }
+    }
+    1e-9 * ns
 }
 
 /// All tables (module documentation).
@@ -99,11 +131,11 @@ fn xi_table() -> Result<()> {
         rayon::current_num_threads()
     );
     println!(
-        "(NK: Newton-Krylov with the upstream line preconditioner, the default; NK-J: with the Jacobi preconditioner, the default before; iterations = Newton steps; GS: Gauss-Seidel reference, iterations = sweeps; products = operator products, 4 FFT convolutions each)"
+        "(NK: Newton-Krylov with the upstream line preconditioner and the nested start from coarser grids, the default; NK-0: the same from zero tractions, the default before; NK-J: with the Jacobi preconditioner from zero; iterations = Newton steps; GS: Gauss-Seidel reference, iterations = sweeps; products = operator products on this grid, 4 FFT convolutions each; a warm start uses no coarse grid)"
     );
     println!(
-        "{:>10} {:>7} {:>13} {:>6} {:>6} {:>6} {:>6} {:>9} {:>10}",
-        "xi", "solver", "Fx/muFn", "start", "adh", "slip", "iters", "products", "time ms"
+        "{:>10} {:>7} {:>13} {:>6} {:>6} {:>6} {:>6} {:>9} {:>7} {:>10}",
+        "xi", "solver", "Fx/muFn", "start", "adh", "slip", "iters", "products", "total", "time ms"
     );
     for xi in [1e-5, 3e-4, 1e-3, 3e-3] {
         for solver in SOLVERS {
@@ -121,7 +153,7 @@ fn xi_table() -> Result<()> {
                     .map_err(|e| anyhow!("{e}"))?;
                 let ms = 1e3 * t.elapsed().as_secs_f64();
                 println!(
-                    "{:>10.1e} {:>7} {:>13.9} {:>6} {:>6} {:>6} {:>6} {:>9} {:>10.2}",
+                    "{:>10.1e} {:>7} {:>13.9} {:>6} {:>6} {:>6} {:>6} {:>9} {:>7.1} {:>10.2}",
                     xi,
                     name(solver),
                     s.force_x / (MU * FN),
@@ -130,6 +162,7 @@ fn xi_table() -> Result<()> {
                     s.slip_elements,
                     s.iterations,
                     s.products,
+                    s.products as f64 + s.coarse_products.fine_equivalent(grid.len()),
                     ms
                 );
             }
@@ -140,12 +173,17 @@ fn xi_table() -> Result<()> {
 
 /// Cost per solve against the grid size at ξ = 1e-3, cold start. The Gauss–Seidel reference
 /// is run up to 100 × 100 (its dense column updates cost O(n_c²) per sweep), the Jacobi
-/// Newton–Krylov solver up to 300 × 300.
+/// Newton–Krylov solver up to 300 × 300. "products" are those on the fine grid; the nested
+/// start's coarse-grid products are listed separately and, weighted by the cost of one
+/// product (N log N) relative to the fine grid's, added in "total".
 fn grid_table() -> Result<()> {
     println!();
     println!("steady rolling, tractcurv, xi = 1e-3, cold start, against the grid size:");
     println!(
-        "{:>9} {:>8} {:>7} {:>13} {:>6} {:>6} {:>6} {:>9} {:>6} {:>10} {:>11}",
+        "(NK: nested start, the default; NK-0: the same from zero tractions, the default before; products on the fine grid; coarse: products on the coarser grids (elements: products); total: fine + coarse in fine-grid products, weighted by N log N)"
+    );
+    println!(
+        "{:>9} {:>8} {:>7} {:>13} {:>6} {:>6} {:>6} {:>9} {:>7} {:>10} {:>10} {:>11}  coarse",
         "grid",
         "contact",
         "solver",
@@ -154,8 +192,9 @@ fn grid_table() -> Result<()> {
         "slip",
         "iters",
         "products",
-        "FFTs",
+        "total",
         "time ms",
+        "cpu ms",
         "ms/product"
     );
     for n in [44, 100, 200, 300, 400] {
@@ -165,13 +204,21 @@ fn grid_table() -> Result<()> {
                 continue;
             }
             let mut ts = TangentialSolver::new(grid, m).map_err(|e| anyhow!("{e}"))?;
-            let t = Instant::now();
+            let (t, cpu) = (Instant::now(), process_cpu_s());
             let s = ts
                 .steady_rolling(&normal.pressure, MU, creep(1e-3), &options(solver))
                 .map_err(|e| anyhow!("{e}"))?;
             let ms = 1e3 * t.elapsed().as_secs_f64();
+            let cpu_ms = 1e3 * (process_cpu_s() - cpu);
+            let total = s.products as f64 + s.coarse_products.fine_equivalent(grid.len());
+            let coarse: Vec<String> = s
+                .coarse_products
+                .levels
+                .iter()
+                .map(|(m, p)| format!("{m}: {p}"))
+                .collect();
             println!(
-                "{:>9} {:>8} {:>7} {:>13.9} {:>6} {:>6} {:>6} {:>9} {:>6} {:>10.1} {:>11.3}",
+                "{:>9} {:>8} {:>7} {:>13.9} {:>6} {:>6} {:>6} {:>9} {:>7.1} {:>10.1} {:>10.1} {:>11.3}  {}",
                 format!("{n} x {n}"),
                 normal.elements_in_contact,
                 name(solver),
@@ -180,9 +227,11 @@ fn grid_table() -> Result<()> {
                 s.slip_elements,
                 s.iterations,
                 s.products,
-                4 * s.products,
+                total,
                 ms,
-                ms / s.products.max(1) as f64
+                cpu_ms,
+                ms / total.max(1.0),
+                coarse.join(", ")
             );
         }
     }
@@ -195,6 +244,11 @@ fn creep_curve() -> Result<()> {
     let (grid, m, normal, h) = tractcurv(44)?;
     println!();
     for solver in SOLVERS {
+        if solver == Solver::Line {
+            // Identical to NK here: the curve starts at ξ = 0 (zero tractions, no
+            // iteration) and warm-starts every later point, so no point uses a coarse grid.
+            continue;
+        }
         let opts = options(solver);
         let mut ts = TangentialSolver::new(grid, m).map_err(|e| anyhow!("{e}"))?;
         let t = Instant::now();

@@ -76,6 +76,6 @@ pub use operator::{
 pub use solution::NormalSolution;
 pub use strategy::{TangentialMethod, TangentialStrategy, tangential_strategy};
 pub use tangential::{
-    Creepages, ElementState, NkPreconditioner, RollingLoad, ShiftLoad, SteadySolver, StepMotion,
-    TangentialOptions, TangentialSolution, TangentialSolver,
+    CoarseProducts, Creepages, ElementState, NkPreconditioner, RollingLoad, ShiftLoad,
+    SteadySolver, StepMotion, TangentialOptions, TangentialSolution, TangentialSolver,
 };

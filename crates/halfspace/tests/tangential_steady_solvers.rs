@@ -12,6 +12,10 @@
 //! of μ F_n (measured: at most 3.3e-7). Element states may differ only where |p| is within
 //! that margin of the bound (an adhesion element at the bound is a slip element with zero
 //! slip), which is checked element by element.
+//!
+//! The default starts a cold solve on grids of at least 40 × 40 from the solution on coarser
+//! grids (nested iteration, `TangentialOptions::nested_start`); it is compared with the same
+//! solver started from zero tractions (the solver before) as well, at the same tolerance.
 
 use halfspace::*;
 
@@ -32,8 +36,15 @@ impl Rng {
     }
 }
 
-/// Returns the operator products of the two Newton–Krylov solves (line, Jacobi).
-fn compare(case: usize, n: usize, rng: &mut Rng) -> (usize, usize) {
+/// Operator products of one case: line preconditioner from zero, Jacobi from zero, and the
+/// default (nested start) on the fine grid.
+struct Products {
+    line: usize,
+    jacobi: usize,
+    nested: usize,
+}
+
+fn compare(case: usize, n: usize, rng: &mut Rng) -> Products {
     let m = Material::from_combined(82e9, 0.28).unwrap();
     // Curvatures A = 0.8 /m (tractcurv) and B for an aspect ratio b/a in about 0.3 … 3.
     let a_curv = 0.8;
@@ -60,10 +71,11 @@ fn compare(case: usize, n: usize, rng: &mut Rng) -> (usize, usize) {
         phi: rng.range(-1.0, 1.0) * sat / h.a.min(h.b),
     };
     let load = RollingLoad::Creepages(c);
-    let solve = |solver: SteadySolver, nk_preconditioner: NkPreconditioner| {
+    let solve = |solver: SteadySolver, nk_preconditioner: NkPreconditioner, nested_start| {
         let opts = TangentialOptions {
             steady_solver: solver,
             nk_preconditioner,
+            nested_start,
             ..Default::default()
         };
         TangentialSolver::new(grid, m)
@@ -71,15 +83,28 @@ fn compare(case: usize, n: usize, rng: &mut Rng) -> (usize, usize) {
             .steady_rolling(&normal.pressure, mu, load, &opts)
             .unwrap()
     };
-    let nk = solve(SteadySolver::NewtonKrylov, NkPreconditioner::UpstreamLine);
-    let jacobi = solve(SteadySolver::NewtonKrylov, NkPreconditioner::Jacobi);
-    let gs = solve(SteadySolver::GaussSeidel, NkPreconditioner::UpstreamLine);
+    let nk = solve(
+        SteadySolver::NewtonKrylov,
+        NkPreconditioner::UpstreamLine,
+        true,
+    );
+    let zero = solve(
+        SteadySolver::NewtonKrylov,
+        NkPreconditioner::UpstreamLine,
+        false,
+    );
+    let jacobi = solve(SteadySolver::NewtonKrylov, NkPreconditioner::Jacobi, false);
+    let gs = solve(
+        SteadySolver::GaussSeidel,
+        NkPreconditioner::UpstreamLine,
+        false,
+    );
     let label = format!(
         "case {case}: n {n}, B {b_curv:.4}, Fn {fn_:.1}, mu {mu:.4}, xi {:.4e}, eta {:.4e}, phi {:.4e}",
         c.xi, c.eta, c.phi
     );
     println!(
-        "{label}: Fx {:.6e}/{:.6e} Fy {:.6e}/{:.6e} slip {}/{}, Newton {} ({} products; Jacobi: {}, {}), sweeps {}",
+        "{label}: Fx {:.6e}/{:.6e} Fy {:.6e}/{:.6e} slip {}/{}, Newton {} ({} products, coarse {:?}; from zero: {}, {}; Jacobi: {}, {}), sweeps {}",
         nk.force_x,
         gs.force_x,
         nk.force_y,
@@ -88,15 +113,28 @@ fn compare(case: usize, n: usize, rng: &mut Rng) -> (usize, usize) {
         gs.slip_elements,
         nk.iterations,
         nk.products,
+        nk.coarse_products.levels,
+        zero.iterations,
+        zero.products,
         jacobi.iterations,
         jacobi.products,
         gs.iterations
     );
     let pmax = mu * normal.pressure.iter().cloned().fold(0.0, f64::max);
-    // The line-preconditioned solver (default) against the Gauss–Seidel reference and against
-    // the Jacobi-preconditioned Newton–Krylov solver (the default before).
+    // The default (line preconditioner, nested start) against the Gauss–Seidel reference, the
+    // same solver from zero tractions and the Jacobi-preconditioned Newton–Krylov solver.
     let bound: Vec<f64> = normal.pressure.iter().map(|p| mu * p).collect();
-    for (name, reference) in [("Gauss–Seidel", &gs), ("Jacobi NK", &jacobi)] {
+    assert_eq!(
+        nk.coarse_products.levels.is_empty(),
+        n < 40,
+        "{label}: a nested start exactly on grids of at least 40 x 40"
+    );
+    assert!(zero.coarse_products.levels.is_empty(), "{label}");
+    for (name, reference) in [
+        ("Gauss–Seidel", &gs),
+        ("Newton–Krylov from zero", &zero),
+        ("Jacobi NK", &jacobi),
+    ] {
         agree(
             &label,
             name,
@@ -111,7 +149,11 @@ fn compare(case: usize, n: usize, rng: &mut Rng) -> (usize, usize) {
         !jacobi.steady_fallback,
         "{label}: Jacobi Newton–Krylov fell back"
     );
-    (nk.products, jacobi.products)
+    Products {
+        line: zero.products,
+        jacobi: jacobi.products,
+        nested: nk.products,
+    }
 }
 
 /// Forces, tractions and states of two solutions of one case within the tolerance of the
@@ -166,18 +208,30 @@ fn newton_krylov_equals_gauss_seidel_on_random_rolling_cases() {
     let mut rng = Rng(0x5EED_2026);
     let mut case = 0;
     let (mut line, mut jacobi) = (0, 0);
+    // Fine-grid products on the grids with a nested start, from zero and nested.
+    let (mut line_large, mut nested_large) = (0, 0);
     for (n, count) in [(16, 6), (24, 4), (32, 4), (48, 2), (64, 2), (128, 1)] {
         for _ in 0..count {
-            let (a, b) = compare(case, n, &mut rng);
-            line += a;
-            jacobi += b;
+            let p = compare(case, n, &mut rng);
+            line += p.line;
+            jacobi += p.jacobi;
+            if n >= 40 {
+                line_large += p.line;
+                nested_large += p.nested;
+            }
             case += 1;
         }
     }
-    // The upstream line preconditioner saves operator products over the whole set (measured:
-    // see docs/tangential.md "Performance").
-    println!("operator products in total: line {line}, Jacobi {jacobi}");
+    // The upstream line preconditioner saves operator products over the whole set, and the
+    // nested start saves fine-grid products (measured: see docs/tangential.md "Performance").
+    println!(
+        "operator products in total: line {line}, Jacobi {jacobi}; 48² … 128²: from zero {line_large}, nested start {nested_large} (fine grid)"
+    );
     assert!(line < jacobi, "line {line}, Jacobi {jacobi}");
+    assert!(
+        nested_large < line_large,
+        "nested {nested_large}, from zero {line_large}"
+    );
 }
 
 #[test]
@@ -223,4 +277,66 @@ fn iteration_limit_falls_back_and_reports_non_convergence() {
         .steady_rolling(&normal.pressure, 0.3, load, &TangentialOptions::default())
         .unwrap();
     assert!(!s.steady_fallback && s.iterations < 20, "{}", s.iterations);
+}
+
+/// Dissimilar materials (K ≠ 0, aluminium on steel): the pressure's tangential displacement
+/// enters W on every level of the nested start (each coarse level computes its own from the
+/// restricted pressure); the result equals the solve from zero tractions and the
+/// Gauss–Seidel reference within the tolerance of the module documentation.
+#[test]
+fn nested_start_with_dissimilar_materials_equals_the_solve_from_zero() {
+    let m = Material::combine(
+        Body::elastic(70e9, 0.33).unwrap(),
+        Body::elastic(210e9, 0.3).unwrap(),
+    )
+    .unwrap();
+    assert!(m.k.abs() > 0.05, "K = {}", m.k);
+    let shape = GapShape::Quadratic {
+        a: 0.8,
+        b: 0.281417,
+    };
+    let fn_ = 60e3;
+    let mu = 0.3;
+    let h = shape.hertz(&m, NormalLoad::Force(fn_)).unwrap();
+    let n = 48;
+    let grid = Grid::centred(n, n, 2.1 * h.a / n as f64, 2.1 * h.b / n as f64, 0.0, 0.0).unwrap();
+    let gap = shape.sample(&grid).unwrap();
+    let normal = NormalSolver::new(grid, m)
+        .unwrap()
+        .solve(&gap, NormalLoad::Force(fn_), &SolverOptions::default())
+        .unwrap();
+    let load = RollingLoad::Creepages(Creepages {
+        xi: 5e-4,
+        eta: 1e-4,
+        phi: 0.0,
+    });
+    let solve = |steady_solver, nested_start| {
+        let opts = TangentialOptions {
+            steady_solver,
+            nested_start,
+            ..Default::default()
+        };
+        TangentialSolver::new(grid, m)
+            .unwrap()
+            .steady_rolling(&normal.pressure, mu, load, &opts)
+            .unwrap()
+    };
+    let nested = solve(SteadySolver::NewtonKrylov, true);
+    let zero = solve(SteadySolver::NewtonKrylov, false);
+    let gs = solve(SteadySolver::GaussSeidel, false);
+    assert_eq!(nested.coarse_products.levels.len(), 1);
+    assert!(nested.slip_elements > 100 && nested.adhesion_elements > 100);
+    let bound: Vec<f64> = normal.pressure.iter().map(|p| mu * p).collect();
+    let pmax = bound.iter().cloned().fold(0.0, f64::max);
+    for (name, reference) in [("from zero", &zero), ("Gauss–Seidel", &gs)] {
+        agree(
+            "K != 0, 48 x 48",
+            name,
+            &nested,
+            reference,
+            &bound,
+            mu * normal.normal_force,
+            pmax,
+        );
+    }
 }

@@ -151,6 +151,33 @@ fn tables(
     }
 }
 
+/// The steady tables A − A_v(δx) of `components` from the centred tables `direct` of A
+/// (shift 0): A_v(δx) at offset o is A at o + (1, 0), read from `direct` one column to the
+/// right, so only the last column (o_x = nx) is evaluated anew. The same values as
+/// `tables(…, 0.0, Some(dx), …)` (the offset o_x·dx + dx there against (o_x + 1)·dx here: a
+/// rounding difference), at a third of the cost.
+fn steady_from_direct(
+    material: &Material,
+    grid: &Grid,
+    direct: &[&[f64]],
+    components: &[Component],
+) -> Vec<Vec<f64>> {
+    let (wx, wy) = (2 * grid.nx - 1, 2 * grid.ny - 1);
+    let mut out: Vec<Vec<f64>> = direct.iter().map(|d| d.to_vec()).collect();
+    for j in 0..wy {
+        let oy = (j as f64 - (grid.ny as f64 - 1.0)) * grid.dy;
+        let edge = tangential_influence(material, grid.nx as f64 * grid.dx, oy, grid.dx, grid.dy);
+        for (table, &c) in out.iter_mut().zip(components) {
+            let row = &mut table[j * wx..(j + 1) * wx];
+            for i in 0..wx - 1 {
+                row[i] -= row[i + 1];
+            }
+            row[wx - 1] -= edge.get(c);
+        }
+    }
+    out
+}
+
 /// The FFT implementation (module documentation). No product allocates.
 #[derive(Debug)]
 pub struct FftTangentialInfluence {
@@ -260,7 +287,9 @@ impl TangentialInfluenceOperator for FftTangentialInfluence {
             TangentialKernel::Direct => {}
             TangentialKernel::Steady => {
                 if self.steady.is_none() {
-                    let t = tables(&m, &g, 0.0, Some(g.dx), &TRACTION);
+                    let d = &self.direct;
+                    let direct = [d.xx.as_slice(), d.xy.as_slice(), d.yy.as_slice()];
+                    let t = steady_from_direct(&m, &g, &direct, &TRACTION);
                     let set = KernelSet::new(&self.conv, &g, t.try_into().expect("three"));
                     self.steady = Some(set);
                 }
@@ -528,6 +557,33 @@ impl TangentialInfluenceOperator for DirectTangentialInfluence {
                 let c = self.coefficients(kernel, i, j);
                 sx[i] += c.xx * ddx + c.xy * ddy;
                 sy[i] += c.xy * ddx + c.yy * ddy;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The steady tables read from the direct ones equal the two tabulations A(o) − A(o + δx)
+    /// (the closed-form coefficients evaluated at both offsets), on a grid with dx ≠ dy.
+    #[test]
+    fn steady_tables_from_the_direct_ones_equal_two_tabulations() {
+        let m = Material::from_combined(82e9, 0.28).unwrap();
+        let g = Grid::new(7, 5, 0.3e-3, 0.5e-3, -1e-3, 2e-3).unwrap();
+        let direct = tables(&m, &g, 0.0, None, &TRACTION);
+        let refs: Vec<&[f64]> = direct.iter().map(|t| t.as_slice()).collect();
+        let fast = steady_from_direct(&m, &g, &refs, &TRACTION);
+        let slow = tables(&m, &g, 0.0, Some(g.dx), &TRACTION);
+        for (c, (f, s)) in fast.iter().zip(&slow).enumerate() {
+            let scale = direct[c].iter().fold(0.0_f64, |a, v| a.max(v.abs()));
+            assert!(scale > 0.0);
+            for (k, (a, b)) in f.iter().zip(s).enumerate() {
+                assert!(
+                    (a - b).abs() <= 1e-13 * scale,
+                    "component {c}, offset {k}: {a} {b}"
+                );
             }
         }
     }

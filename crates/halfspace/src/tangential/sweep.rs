@@ -234,6 +234,7 @@ impl<T: TangentialInfluenceOperator> TangentialSolver<T> {
             residual,
             products: self.products,
             steady_fallback: self.fallback,
+            coarse_products: self.coarse_products.clone(),
         }
     }
 }
