@@ -340,3 +340,64 @@ fn nested_start_with_dissimilar_materials_equals_the_solve_from_zero() {
         );
     }
 }
+
+/// A cold start starts from zero tractions, whatever an earlier solve of the same solver left
+/// behind: after `reset()` (with `warm_start` on) and with `warm_start` off, a solve of a case
+/// repeats a fresh solver's solve of it bit for bit (same iterations, products and tractions),
+/// while a warm start from the other case's solution takes a different path.
+#[test]
+fn a_cold_start_ignores_the_previous_solution() {
+    let m = Material::from_combined(82e9, 0.28).unwrap();
+    let shape = GapShape::Quadratic { a: 0.8, b: 1.2 };
+    let fn_ = 80e3;
+    let mu = 0.3;
+    let h = shape.hertz(&m, NormalLoad::Force(fn_)).unwrap();
+    for n in [24, 48] {
+        let grid =
+            Grid::centred(n, n, 2.1 * h.a / n as f64, 2.1 * h.b / n as f64, 0.0, 0.0).unwrap();
+        let gap = shape.sample(&grid).unwrap();
+        let normal = NormalSolver::new(grid, m)
+            .unwrap()
+            .solve(&gap, NormalLoad::Force(fn_), &SolverOptions::default())
+            .unwrap();
+        let first = RollingLoad::Creepages(Creepages {
+            xi: -1.2e-3,
+            eta: 0.4e-3,
+            phi: 0.0,
+        });
+        let second = RollingLoad::Creepages(Creepages {
+            xi: 0.6e-3,
+            eta: -0.2e-3,
+            phi: 0.1,
+        });
+        let warm = TangentialOptions::default();
+        let cold = TangentialOptions {
+            warm_start: false,
+            ..Default::default()
+        };
+        let fresh = TangentialSolver::new(grid, m)
+            .unwrap()
+            .steady_rolling(&normal.pressure, mu, second, &warm)
+            .unwrap();
+        let mut solver = TangentialSolver::new(grid, m).unwrap();
+        let run = |solver: &mut TangentialSolver, load, opts: &TangentialOptions| {
+            solver
+                .steady_rolling(&normal.pressure, mu, load, opts)
+                .unwrap()
+        };
+        run(&mut solver, first, &warm);
+        let warmed = run(&mut solver, second, &warm);
+        run(&mut solver, first, &warm);
+        solver.reset();
+        let after_reset = run(&mut solver, second, &warm);
+        run(&mut solver, first, &warm);
+        let unwarmed = run(&mut solver, second, &cold);
+        for (name, s) in [("after reset", &after_reset), ("warm_start off", &unwarmed)] {
+            assert_eq!(s.products, fresh.products, "{n}: {name}");
+            assert_eq!(s.iterations, fresh.iterations, "{n}: {name}");
+            assert_eq!(s.traction_x, fresh.traction_x, "{n}: {name}");
+            assert_eq!(s.traction_y, fresh.traction_y, "{n}: {name}");
+        }
+        assert_ne!(warmed.traction_x, fresh.traction_x, "{n}: warm start");
+    }
+}

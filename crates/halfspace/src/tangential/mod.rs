@@ -407,6 +407,8 @@ impl<T: TangentialInfluenceOperator> TangentialSolver<T> {
     /// Forget the previous tractions (the next solve starts from zero).
     pub fn reset(&mut self) {
         self.has_previous = false;
+        self.px.fill(0.0);
+        self.py.fill(0.0);
     }
 
     pub(super) fn check_len(&self, name: &'static str, found: usize) -> Result<(), ContactError> {
@@ -677,6 +679,12 @@ impl<T: TangentialInfluenceOperator> TangentialSolver<T> {
         c: Creepages,
         options: &TangentialOptions,
     ) -> Result<(usize, f64), ContactError> {
+        if !options.warm_start || !self.has_previous {
+            // A cold solve starts from zero, whatever an earlier solve left in px, py.
+            self.px.fill(0.0);
+            self.py.fill(0.0);
+            self.has_previous = false;
+        }
         if options.steady_solver == SteadySolver::NewtonKrylov {
             if options.nested_start
                 && !self.has_previous
