@@ -365,7 +365,7 @@ const SMALL_GROUP: usize = 16;
 /// Solves the row-major `m × m` system `a y = b` in place (`b ← y`, `a` destroyed) by Gaussian
 /// elimination with partial pivoting (Golub & Van Loan, Algorithm 3.4.1; references.md §R4.1).
 /// False if a pivot is zero or not finite (the matrix is singular to working precision).
-fn small_solve_in_place(a: &mut [f64], b: &mut [f64]) -> bool {
+pub fn small_solve_in_place(a: &mut [f64], b: &mut [f64]) -> bool {
     // The sizes of one vehicle's wheels and of a few vehicles on the span with a fixed
     // size (the compiler unrolls the loops; the same operations in the same order).
     match b.len() {
