@@ -63,9 +63,9 @@ fn relative_difference(a: &[Vec<f64>], b: &[Vec<f64>]) -> f64 {
 /// largest difference of each history relative to its largest magnitude, and the number of
 /// vehicle-steps held against `expected_held` (±1 step per vehicle).
 ///
-/// Tolerances: the static start balances each vehicle to about 1e-10 of its weight (the
-/// contact law's static approach), and the full step lets that imbalance move a vehicle at
-/// rest (4e-11 m of body displacement in 0.3 s), while a held vehicle stays exactly static;
+/// Tolerances: the static start balances each vehicle to round-off of its matrices, and the
+/// full step lets that imbalance move a vehicle at rest (a body acceleration of about 1e-9
+/// m/s², 4e-11 m of body displacement in 0.3 s), while a held vehicle stays exactly static;
 /// that difference, carried through the stiff Hertz contact (1.5e9 N/m) once the vehicle
 /// runs, is 1e-9 of the largest force. A vehicle held one step too long or while anything
 /// reaches it would differ at the size of its response (1e-3 and more).

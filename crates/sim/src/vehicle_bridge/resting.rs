@@ -7,21 +7,26 @@
 //! and r was zero along its whole path so far, with a zero start velocity), nothing acts on it
 //! but gravity and the rail, so its exact solution stays the static state: its step changes
 //! nothing. The coupled step then leaves it out — its wheels are not evaluated and take no part
-//! in the coupling iteration (residual, force floor, capacitance groups, convergence), its
-//! DOFs keep the structural predictor (rows of A held, `linalg::BlockDiagonal::hold_dense`) —
-//! until the first step whose geometry puts one of its wheels on the span or on a non-zero
-//! irregularity; from then on it is stepped like every other vehicle, for good.
+//! in the coupling iteration (residual, capacitance groups, convergence; the force floor keeps
+//! their last value), its rows of A are held (`linalg::BlockDiagonal::hold_dense`) and its DOFs
+//! take the structural predictor with zero acceleration, `x = q̃` (so the stepper's corrector
+//! gives a_{n+1} = 0 and keeps it at rest) — until the first step whose geometry puts one of
+//! its wheels on the span or on a non-zero irregularity; from then on it is stepped like every
+//! other vehicle, for good.
 //!
-//! What the full step would do instead is round-off: the static start balances the vehicle
-//! to round-off only, and the full iteration moves it by that much. The held vehicle keeps the
-//! structural stepper's own round-off start acceleration (it is stepped by the stepper with
-//! the predictor as its state). Both are bounded by the test
-//! `train_resting_vehicles::held_vehicles_equal_the_full_step`, which compares the whole
-//! crossing's histories with and without the hold.
+//! The full step instead moves a vehicle at rest by its start's imbalance: the static start
+//! (wheel loads from the vehicle's statics, body and bogies from K_ff q_f = g_f − K_fw z_w)
+//! balances it to round-off of its matrices, and the full step lets that residual accelerate
+//! it (measured for the Manchester car: about 1e-9 m/s² of body acceleration, 1e-10 of g; 4e-11
+//! m of body displacement in 0.3 s). The held vehicle stays exactly static. The test
+//! `train_resting_vehicles::held_vehicles_equal_the_full_step` compares the whole crossing's
+//! histories with and without the hold: they agree to 1e-10 of the state and 1e-9 of the
+//! contact forces (the imbalance carried through the stiff Hertz contact once the car runs).
 //!
 //! The hold applies to the structural methods with the quasi-Newton coupling and compliant
-//! contacts (Hertz, BEM), without friction; a vehicle is evaluated in the first step (its
-//! contact outputs are those of the static state from then on).
+//! contacts (Hertz, BEM), without friction (the track and Radau5 paths do not use it); a
+//! vehicle is evaluated in the first step (its contact outputs are those of the static state
+//! from then on).
 
 use super::Simulation;
 use super::contact::is_rigid;
@@ -96,7 +101,7 @@ impl Simulation {
     /// (`wheel_geometry`) is in the work space, and lists the wheels that take part.
     pub(super) fn select_live_wheels(&mut self) {
         let r = &mut self.resting;
-        if r.at_rest.is_empty() {
+        if r.at_rest.is_empty() || !(r.enabled || r.detach) {
             return;
         }
         // The structural path with the quasi-Newton coupling and without friction (the track
