@@ -57,7 +57,8 @@
 //! correction is within the tolerance; in a smooth run most steps need one contact solve. A step whose iteration fails (no convergence in `max_iter`, divergence,
 //! a contact-solver failure) is retried as two half steps, recursively up to `max_halvings`
 //! times; every retry is counted in [`SolverStats::failed_steps`], and a step that still fails
-//! is an error.
+//! is an error. Multibody vehicles at rest ahead of the span are held out of the coupled step,
+//! and vehicles off the span are solved on their own (modules `resting` and `detached`).
 //!
 //! # Start
 //! Every wheel starts in static equilibrium on an undeformed rail: F_k = W_k =

@@ -67,8 +67,8 @@ fn relative_difference(a: &[Vec<f64>], b: &[Vec<f64>]) -> f64 {
 /// full step lets that imbalance move a vehicle at rest (a body acceleration of about 1e-9
 /// m/s², 4e-11 m of body displacement in 0.3 s), while a held vehicle stays exactly static;
 /// that difference, carried through the stiff Hertz contact (1.5e9 N/m) once the vehicle
-/// runs, is 1e-9 of the largest force. A vehicle held one step too long or while anything
-/// reaches it would differ at the size of its response (1e-3 and more).
+/// runs, is 1e-9 of the largest force. A vehicle held while the span or a dip reaches it would
+/// miss that whole response.
 fn compare(text: &str, expected_held: &[usize]) {
     let mut held_sim = simulation(text);
     held_sim.solve_detached_vehicles(false);
@@ -126,7 +126,7 @@ fn detached_vehicles_equal_the_coupled_step() {
     // 1e-10 of the static wheel load, or the forces' floating-point floor) instead of until all
     // wheels have, so the runs differ at that level: forces and approaches to 1e-8 of their
     // largest value, the state to 1e-9. A car detached while on the span, or a wrong block,
-    // would differ at the size of the bridge's response (1e-2 and more).
+    // would distort the whole response.
     compare_detached(&crossing(4, ""));
 }
 
