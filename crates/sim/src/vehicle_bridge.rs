@@ -57,7 +57,8 @@
 //! correction is within the tolerance; in a smooth run most steps need one contact solve. A step whose iteration fails (no convergence in `max_iter`, divergence,
 //! a contact-solver failure) is retried as two half steps, recursively up to `max_halvings`
 //! times; every retry is counted in [`SolverStats::failed_steps`], and a step that still fails
-//! is an error.
+//! is an error. Multibody vehicles at rest ahead of the span are held out of the coupled step,
+//! and vehicles off the span are solved on their own (modules `resting` and `detached`).
 //!
 //! # Start
 //! Every wheel starts in static equilibrium on an undeformed rail: F_k = W_k =
@@ -70,6 +71,7 @@ mod assembly;
 mod contact;
 mod contact_eval;
 mod coupling;
+mod detached;
 mod error;
 pub mod irregularity;
 pub mod linalg;
@@ -78,6 +80,7 @@ mod outputs;
 mod picard;
 pub mod profiles;
 pub mod radau;
+mod resting;
 mod rigid;
 pub mod run;
 mod scenario;
@@ -162,6 +165,8 @@ pub struct Simulation {
     /// The track between the wheels and the bridge (`None`: the rail is the beam; module
     /// [`track`]).
     track: Option<Box<track::TrackLayer>>,
+    /// Vehicles at rest ahead of the span, held out of the step (module [`resting`]).
+    resting: resting::Resting,
 }
 
 #[derive(Debug, Default)]
@@ -192,10 +197,9 @@ struct Work {
     /// the mode shapes there (scratch, m).
     moving_load: Vec<f64>,
     force_shapes: Vec<f64>,
-    /// The extrapolated start's ĝ and v per wheel, and the list of all wheels.
+    /// The extrapolated start's ĝ and v per wheel.
     g_act: Vec<Vec<f64>>,
     v_act: Vec<Vec<f64>>,
-    all_wheels: Vec<usize>,
     outputs: Vec<LawOutput>,
     delta: Vec<f64>,
     prev_force: Vec<f64>,
@@ -210,6 +214,8 @@ struct Work {
     /// forces' floating-point floor per wheel (see `Simulation::force_floor`).
     floor_residual: Vec<f64>,
     floor_ainv_g: Vec<f64>,
+    /// Per wheel: its floor in the last step it took part in; the largest is `force_floor`.
+    wheel_floor: Vec<f64>,
     force_floor: f64,
 }
 

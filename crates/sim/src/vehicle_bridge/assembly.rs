@@ -327,7 +327,6 @@ impl Simulation {
             force_shapes: vec![0.0; m],
             g_act: vec![vec![0.0; n]; nw],
             v_act: vec![vec![0.0; n]; nw],
-            all_wheels: (0..nw).collect(),
             outputs: vec![LawOutput::default(); nw],
             delta: vec![0.0; nw],
             prev_force: vec![0.0; nw],
@@ -340,6 +339,7 @@ impl Simulation {
             dense: DenseWork::default(),
             floor_residual: vec![0.0; n],
             floor_ainv_g: vec![0.0; n],
+            wheel_floor: vec![0.0; nw],
             force_floor: 0.0,
         };
         let mut output_shapes = vec![0.0; m];
@@ -379,8 +379,11 @@ impl Simulation {
             rigid,
             sine: None,
             track: None,
+            resting: Default::default(),
         };
         sim.sine = beam::sine_amplitudes(&*sim.scenario.bridge)?;
+        sim.hold_resting_vehicles(true);
+        sim.solve_detached_vehicles(true);
         sim.initial_samples()?;
         sim.rigid_start()?;
         if let Integrator::Radau5(spec) = sim.scenario.integrator {

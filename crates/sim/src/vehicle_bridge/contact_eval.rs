@@ -81,7 +81,8 @@ impl Simulation {
     pub(super) fn evaluate_contacts(&mut self, tangent: bool) -> Result<(), VehicleBridgeError> {
         let m = self.scenario.bridge.n_modes();
         let w = &mut self.work;
-        for k in 0..self.contacts.len() {
+        let (live, held) = (&self.resting.live, &self.resting.held_wheel);
+        for &k in live {
             let iw = self.wheel_dof[k];
             let defl = w.deflection_under(k, &w.x);
             w.delta[k] = w.approach(k, iw, &w.x);
@@ -113,25 +114,28 @@ impl Simulation {
         let solving = self
             .contacts
             .iter()
-            .filter(|c| super::contact::pressure_field(c).is_some())
+            .zip(held)
+            .filter(|(c, h)| !**h && super::contact::pressure_field(c).is_some())
             .count();
         let items = self
             .contacts
             .iter_mut()
             .zip(&w.delta)
             .zip(&w.column_gap)
-            .zip(w.column_force.iter_mut().zip(w.outputs.iter_mut()));
+            .zip(w.column_force.iter_mut().zip(w.outputs.iter_mut()))
+            .enumerate()
+            .filter(|(k, _)| !held[*k]);
         if solving >= PARALLEL_LAWS {
             use rayon::prelude::*;
-            let items: Vec<_> = items.enumerate().collect();
+            let items: Vec<_> = items.collect();
             // The first error by wheel index, whatever the thread count.
             let results: Vec<Result<(), VehicleBridgeError>> =
                 items.into_par_iter().map(evaluate).collect();
             results.into_iter().collect::<Result<(), _>>()?;
         } else {
-            items.enumerate().try_for_each(evaluate)?;
+            items.into_iter().try_for_each(evaluate)?;
         }
-        for k in 0..self.contacts.len() {
+        for &k in live {
             let iw = self.wheel_dof[k];
             let out = w.outputs[k];
             let shapes = &w.shape_at_wheel[k];

@@ -20,9 +20,10 @@ impl Simulation {
     /// Skipped unless every wheel is in compliant contact with a known tangent.
     fn extrapolated_start(&mut self, s: f64) {
         let m = self.scenario.bridge.n_modes();
-        let nw = self.contacts.len();
+        let live = &self.resting.live;
+        let nl = live.len();
         let w = &mut self.work;
-        let usable = (0..nw).all(|k| {
+        let usable = live.iter().all(|&k| {
             !is_rigid(&self.contacts[k])
                 && w.outputs[k].force > 0.0
                 && w.outputs[k].stiffness > 0.0
@@ -35,7 +36,8 @@ impl Simulation {
         for i in 0..w.x.len() {
             w.res[i] = w.r[i] - w.res[i];
         }
-        for k in 0..nw {
+        Self::zero_held(&self.resting.held_dofs, &mut w.res);
+        for (a, &k) in live.iter().enumerate() {
             let iw = self.wheel_dof[k];
             let delta = w.approach(k, iw, &w.x);
             let shapes = &w.shape_at_wheel[k];
@@ -70,8 +72,8 @@ impl Simulation {
             w.res[iw] -= s * force;
             gh[iw] = 1.0;
             v[iw] = 1.0;
-            w.compliance[k] = 1.0 / k_n;
-            w.delta_tilde[k] = 0.0;
+            w.compliance[a] = 1.0 / k_n;
+            w.delta_tilde[a] = 0.0;
         }
         let solved = contact_update(
             &self.a_matrix,
@@ -79,9 +81,9 @@ impl Simulation {
             &w.g_act,
             &w.v_act,
             &w.pattern,
-            &w.all_wheels,
-            &w.compliance[..nw],
-            &w.delta_tilde[..nw],
+            live,
+            &w.compliance[..nl],
+            &w.delta_tilde[..nl],
             &mut w.res,
             &mut w.df,
             &mut w.cap,
@@ -115,15 +117,16 @@ impl Simulation {
         for (i, ei) in e.iter_mut().enumerate() {
             *ei = ei.abs() + w.r[i].abs();
         }
-        for k in 0..self.contacts.len() {
+        let live = &self.resting.live;
+        Self::zero_held(&self.resting.held_dofs, e);
+        for &k in live {
             for j in 0..w.span_modes[k] {
                 e[j] += s * w.modal_load[k][j].abs();
             }
             e[self.wheel_dof[k]] += s * w.outputs[k].force.abs();
         }
         self.a_matrix.solve_abs_in_place(e);
-        let mut floor = 0.0f64;
-        for k in 0..self.contacts.len() {
+        for &k in live {
             let iw = self.wheel_dof[k];
             let shapes = &w.shape_at_wheel[k];
             let approach_scale = w.x[iw].abs()
@@ -142,12 +145,15 @@ impl Simulation {
                 1.0 / w.outputs[k].stiffness
             };
             let den = compliance + s * v_ainv_g.abs();
-            if den > 0.0 && den.is_finite() {
-                let f = 32.0 * f64::EPSILON * (propagated + approach_scale) / den;
-                floor = floor.max(f);
-            }
+            w.wheel_floor[k] = if den > 0.0 && den.is_finite() {
+                32.0 * f64::EPSILON * (propagated + approach_scale) / den
+            } else {
+                0.0
+            };
         }
-        w.force_floor = floor;
+        // A held wheel keeps the floor of its last step in the iteration (its state, and with
+        // it its floor, is the same to round-off; module `resting`).
+        w.force_floor = w.wheel_floor.iter().fold(0.0f64, |m, &f| m.max(f));
     }
 
     /// One step attempt of size `dt`; on success the state is advanced.
@@ -185,15 +191,19 @@ impl Simulation {
             )
             .map_err(|e| fatal(e.into()))?;
         self.wheel_geometry(self.eq.t_new).map_err(fatal)?;
+        self.select_live_wheels();
         let c_qa = self.eq.displacement_per_acceleration;
         for i in 0..n {
             self.work.x[i] = self.eq.q_pred[i] + c_qa * self.stepper.a()[i];
+        }
+        // A held vehicle takes the predictor with zero acceleration (module `resting`).
+        for &i in &self.resting.resting_dofs {
+            self.work.x[i] = self.eq.q_pred[i];
         }
         self.rigid_setup().map_err(fatal)?;
         if self.scenario.coupling.solver == CouplingSolver::QuasiNewton {
             self.extrapolated_start(s);
         }
-        let nw = self.contacts.len();
         let tol = self.scenario.coupling.tol * self.force_scale;
         let solver = self.scenario.coupling.solver;
         let mut change = f64::INFINITY;
@@ -223,10 +233,11 @@ impl Simulation {
             }
             self.rigid_constraints();
             let w = &mut self.work;
-            contact_iterations += w.outputs.iter().map(|o| o.iterations).sum::<usize>();
+            let live = &self.resting.live;
+            contact_iterations += live.iter().map(|&k| w.outputs[k].iterations).sum::<usize>();
             if it > 1 {
                 let mut c = 0.0f64;
-                for k in 0..nw {
+                for &k in live {
                     let d = if is_rigid(&self.contacts[k]) {
                         w.last_df[k].abs()
                     } else {
@@ -260,7 +271,7 @@ impl Simulation {
                 }
                 history = [history[1], change];
             }
-            for k in 0..nw {
+            for &k in live {
                 w.prev_force[k] = w.outputs[k].force;
             }
             // Residual R = A x − r − s Σ G_k, written as −R into `res`.
@@ -268,16 +279,18 @@ impl Simulation {
             for i in 0..n {
                 w.res[i] = w.r[i] - w.res[i];
             }
-            for k in 0..nw {
+            for &k in live {
                 for j in 0..w.span_modes[k] {
                     w.res[j] += s * w.modal_load[k][j];
                 }
                 w.res[self.wheel_dof[k]] -= s * w.outputs[k].force;
             }
+            Self::zero_held(&self.resting.held_dofs, &mut w.res);
             if it == 1 {
                 self.force_floor(s);
             }
             let w = &mut self.work;
+            let live = &self.resting.live;
             let solved = match solver {
                 CouplingSolver::Picard => {
                     self.a_matrix.solve_in_place(&mut w.res);
@@ -285,7 +298,7 @@ impl Simulation {
                 }
                 CouplingSolver::QuasiNewton | CouplingSolver::Newton => {
                     w.active.clear();
-                    for k in 0..nw {
+                    for &k in live {
                         let rigid = is_rigid(&self.contacts[k]);
                         let active = if rigid {
                             self.in_contact[k] && !self.rigid.released[k]
@@ -375,8 +388,10 @@ impl Simulation {
             // (Quasi-)Newton: when every wheel is in contact and the predicted force
             // corrections are within the tolerance, accept the corrected state with the
             // linearised forces F + ΔF (error O(ΔF²)) without another contact evaluation.
-            if solver != CouplingSolver::Picard && w.active.len() == nw && !clamped {
-                let predicted = w.df[..nw].iter().fold(0.0f64, |m, d| m.max(d.abs()));
+            if solver != CouplingSolver::Picard && w.active.len() == live.len() && !clamped {
+                let predicted = w.df[..live.len()]
+                    .iter()
+                    .fold(0.0f64, |m, d| m.max(d.abs()));
                 let all_positive = w
                     .active
                     .iter()
@@ -422,6 +437,8 @@ impl Simulation {
                 fatal: None,
             });
         }
+        // The vehicles off the span, each on its own (module `detached`).
+        contact_iterations += self.solve_detached(s, tol)?;
         self.accept(
             StateUpdate::Finish { dt },
             Accepted {

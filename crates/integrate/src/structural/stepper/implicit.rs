@@ -123,6 +123,7 @@ impl StructuralStepper {
     /// jumps it amplified stiff components (measured: gen-α ρ∞ = 0.5 became unstable under
     /// repeated 10× changes), so such a step starts from `a_n` unchanged, which costs O(Δt)
     /// in `a` at that step only.
+    #[inline]
     fn start_acceleration(&self, k: &Kinematics, i: usize) -> f64 {
         if k.a_shift == 0.0 {
             self.a[i]
@@ -132,6 +133,7 @@ impl StructuralStepper {
     }
 
     /// The predictors `(q̃_i, ṽ_i)` of entry `i`.
+    #[inline]
     fn predict(&self, k: &Kinematics, dt: f64, i: usize) -> (f64, f64) {
         let a = self.start_acceleration(k, i);
         (

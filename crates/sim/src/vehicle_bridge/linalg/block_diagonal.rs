@@ -21,6 +21,10 @@ pub struct BlockDiagonal {
     /// Changes whenever the matrix does (unique across all matrices of the process), so that
     /// solves cached against it (`low_rank::CapacitanceWork`) know when they are stale.
     version: u64,
+    /// Per dense block: left out of [`Self::mul`], [`Self::solve_in_place`] and
+    /// [`Self::solve_abs_in_place`] (a vehicle held out of the step; kept across
+    /// [`Self::clear`]).
+    held: Vec<bool>,
 }
 
 /// The source of [`BlockDiagonal`] versions.
@@ -133,7 +137,29 @@ impl BlockDiagonal {
             dense: Vec::new(),
             owner: vec![None; n],
             version: next_version(),
+            held: Vec::new(),
         }
+    }
+
+    /// Leaves dense block `d` (the d-th pushed) out of the full products and solves, or takes
+    /// it back: their entries of the vector are then not written. The matrix is unchanged
+    /// (same version); pattern solves ignore the flag.
+    pub fn hold_dense(&mut self, d: usize, held: bool) {
+        if self.held.len() <= d {
+            self.held.resize(d + 1, false);
+        }
+        self.held[d] = held;
+    }
+
+    /// Dense block `d` (the d-th pushed): its indices, entries and inverse (row-major m × m).
+    pub fn dense_block(&self, d: usize) -> Option<(&[usize], &[f64], &[f64])> {
+        let b = self.dense.get(d)?;
+        Some((&b.indices, &b.entries, &b.inverse))
+    }
+
+    /// Whether dense block `d` is held out of the full products and solves.
+    fn is_held(&self, d: usize) -> bool {
+        self.held.get(d).copied().unwrap_or(false)
     }
 
     /// The matrix's version: changes at every modification (see the field).
@@ -219,7 +245,10 @@ impl BlockDiagonal {
         // The block's entries of x are gathered once, so that each row is a dot product of two
         // slices (the same products summed in the same order as entry by entry).
         self.with_scratch(|xs, buf| {
-            for b in &self.dense {
+            for (d, b) in self.dense.iter().enumerate() {
+                if self.is_held(d) {
+                    continue;
+                }
                 let m = b.indices.len();
                 let xs = &mut xs[..m];
                 for (v, &i) in xs.iter_mut().zip(&b.indices) {
@@ -360,7 +389,7 @@ impl BlockDiagonal {
         }
     }
 
-    /// `x ← A⁻¹ x` in place.
+    /// `x ← A⁻¹ x` in place (held dense blocks: x unchanged there).
     pub fn solve_in_place(&self, x: &mut [f64]) {
         self.dense_apply(x, DensePart::Inverse);
         for &(i, j, inv) in &self.blocks {
@@ -389,10 +418,13 @@ impl BlockDiagonal {
         }
     }
 
-    /// `y = A x`.
+    /// `y = A x` (held dense blocks: y not written there).
     pub fn mul(&self, x: &[f64], y: &mut [f64]) {
         self.with_scratch(|xs, out| {
-            for b in &self.dense {
+            for (d, b) in self.dense.iter().enumerate() {
+                if self.is_held(d) {
+                    continue;
+                }
                 let m = b.indices.len();
                 let xs = &mut xs[..m];
                 for (v, &i) in xs.iter_mut().zip(&b.indices) {

@@ -218,7 +218,8 @@ fn lu_of_size(lus: &mut Vec<DenseLu<f64>>, m: usize) -> &mut DenseLu<f64> {
 /// blocks), and each group is factorised on its own: a long train whose cars are mostly off the
 /// span costs O(wheels), not O(wheels³).
 ///
-/// Arguments: `active` lists the wheels taking part (indices into `g_hat`, `v`, `pattern`);
+/// Arguments: `pattern[c]` lists the indices where wheel c's vectors can be non-zero, in
+/// ascending order; `active` lists the wheels taking part (indices into `g_hat`, `v`, `pattern`);
 /// `compliance`, `delta_tilde` and `df` are indexed by position in `active`. On entry `x` holds
 /// −R; on exit Δx, and `df` holds ΔF. An error if a capacitance matrix is singular.
 #[allow(clippy::too_many_arguments)]
@@ -349,11 +350,19 @@ pub fn contact_update(
     Ok(())
 }
 
-/// `vᵀy` for a `v` zero outside `pattern`.
+/// `vᵀy` for a `v` zero outside `pattern` (ascending indices), summed in pattern order.
 fn pattern_dot(pattern: &[usize], v: &[f64], y: &[f64]) -> f64 {
     match pattern {
         // A wheel off the span: one term (the same value as the sum).
         &[i] => v[i] * y[i],
+        // A wheel on the span: the modes 0..m, then its own DOF. The modes are summed over
+        // contiguous slices (no index loads), then the last term: the same products added in
+        // the same order as the general sum.
+        &[0, .., m_minus_1, last] if m_minus_1 + 2 == pattern.len() => {
+            let m = pattern.len() - 1;
+            let modes: f64 = v[..m].iter().zip(&y[..m]).map(|(a, b)| a * b).sum();
+            modes + v[last] * y[last]
+        }
         p => p.iter().map(|&i| v[i] * y[i]).sum(),
     }
 }
@@ -365,7 +374,7 @@ const SMALL_GROUP: usize = 16;
 /// Solves the row-major `m × m` system `a y = b` in place (`b ← y`, `a` destroyed) by Gaussian
 /// elimination with partial pivoting (Golub & Van Loan, Algorithm 3.4.1; references.md §R4.1).
 /// False if a pivot is zero or not finite (the matrix is singular to working precision).
-fn small_solve_in_place(a: &mut [f64], b: &mut [f64]) -> bool {
+pub fn small_solve_in_place(a: &mut [f64], b: &mut [f64]) -> bool {
     // The sizes of one vehicle's wheels and of a few vehicles on the span with a fixed
     // size (the compiler unrolls the loops; the same operations in the same order).
     match b.len() {

@@ -22,7 +22,9 @@ pub mod block_diagonal;
 pub mod low_rank;
 
 pub use block_diagonal::{BlockDiagonal, MAX_DENSE_BLOCK};
-pub use low_rank::{CapacitanceWork, DenseWork, contact_update, dense_contact_update};
+pub use low_rank::{
+    CapacitanceWork, DenseWork, contact_update, dense_contact_update, small_solve_in_place,
+};
 
 /// A singular or non-finite matrix met by a solve of the coupled step.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, thiserror::Error)]
