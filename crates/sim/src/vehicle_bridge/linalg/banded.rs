@@ -130,8 +130,21 @@ impl BandedLu {
     /// Factorises `lu` (holding the band of the matrix) in place; false if a pivot is zero
     /// (relative to the largest entry of the matrix) or not finite.
     fn factor(&mut self) -> bool {
-        let (m, p, w) = (self.order.len(), self.p, 2 * self.p + 1);
-        let lu = &mut self.lu;
+        // The usual half-bandwidths with a constant p (the compiler unrolls the inner loops;
+        // the same operations in the same order).
+        match self.p {
+            3 => self.factor_with(3),
+            4 => self.factor_with(4),
+            5 => self.factor_with(5),
+            6 => self.factor_with(6),
+            p => self.factor_with(p),
+        }
+    }
+
+    #[inline(always)]
+    fn factor_with(&mut self, p: usize) -> bool {
+        let (m, w) = (self.order.len(), 2 * p + 1);
+        let lu = &mut self.lu[..m * w];
         for k in 0..m {
             let pivot = lu[k * w + p];
             if !(pivot.is_finite() && pivot.abs() > 1e-14 * self.scale) {
@@ -140,13 +153,17 @@ impl BandedLu {
             let inv = 1.0 / pivot;
             self.inv_pivot[k] = inv;
             let last = (k + p).min(m - 1);
-            for i in k + 1..=last {
-                // Row i, column k.
-                let l = lu[i * w + (k + p - i)] * inv;
-                lu[i * w + (k + p - i)] = l;
+            let (upper, lower) = lu.split_at_mut((k + 1) * w);
+            // Row k's columns k + 1 … last.
+            let pivot_row = &upper[k * w + p + 1..k * w + p + 1 + (last - k)];
+            for (i, row) in (k + 1..=last).zip(lower.chunks_exact_mut(w)) {
+                // Row i, column k, at k + p − i; columns k + 1 … last follow it.
+                let at = k + p - i;
+                let l = row[at] * inv;
+                row[at] = l;
                 if l != 0.0 {
-                    for j in k + 1..=last {
-                        lu[i * w + (j + p - i)] -= l * lu[k * w + (j + p - k)];
+                    for (x, &u) in row[at + 1..at + 1 + (last - k)].iter_mut().zip(pivot_row) {
+                        *x -= l * u;
                     }
                 }
             }
@@ -198,32 +215,49 @@ impl BandedLu {
     /// `x ← B⁻¹ x` for the block-local `x` (block order, length m); `buf` (length ≥ m) is
     /// scratch.
     pub fn solve(&self, x: &mut [f64], buf: &mut [f64]) {
-        let (m, p, w) = (self.order.len(), self.p, 2 * self.p + 1);
+        let m = self.order.len();
         let y = &mut buf[..m];
         for (yk, &r) in y.iter_mut().zip(&self.order) {
             *yk = x[r];
         }
-        // L y = b (unit lower band), then U x = y.
-        for k in 0..m {
-            let first = k.saturating_sub(p);
-            let row = &self.lu[k * w..(k + 1) * w];
-            let mut s = y[k];
-            for j in first..k {
-                s -= row[j + p - k] * y[j];
-            }
-            y[k] = s;
-        }
-        for k in (0..m).rev() {
-            let last = (k + p).min(m - 1);
-            let row = &self.lu[k * w..(k + 1) * w];
-            let mut s = y[k];
-            for j in k + 1..=last {
-                s -= row[j + p - k] * y[j];
-            }
-            y[k] = s * self.inv_pivot[k];
+        match self.p {
+            3 => self.substitute(3, y),
+            4 => self.substitute(4, y),
+            5 => self.substitute(5, y),
+            6 => self.substitute(6, y),
+            p => self.substitute(p, y),
         }
         for (yk, &r) in y.iter().zip(&self.order) {
             x[r] = *yk;
+        }
+    }
+
+    /// `y ← U⁻¹ L⁻¹ y` in band order. The forward substitution starts at the first non-zero
+    /// of y (before it y stays exactly zero: a wheel's vector has one non-zero in the block).
+    #[inline(always)]
+    fn substitute(&self, p: usize, y: &mut [f64]) {
+        let (m, w) = (y.len(), 2 * p + 1);
+        let lu = &self.lu[..m * w];
+        let start = y.iter().position(|&v| v != 0.0).unwrap_or(m);
+        for k in start..m {
+            let first = k.saturating_sub(p).max(start);
+            let (done, rest) = y.split_at_mut(k);
+            let row = &lu[k * w + first + p - k..k * w + p];
+            let mut s = rest[0];
+            for (&l, &yj) in row.iter().zip(&done[first..]) {
+                s -= l * yj;
+            }
+            rest[0] = s;
+        }
+        for k in (0..m).rev() {
+            let last = (k + p).min(m - 1);
+            let (head, solved) = y.split_at_mut(k + 1);
+            let row = &lu[k * w + p + 1..k * w + p + 1 + (last - k)];
+            let mut s = head[k];
+            for (&u, &yj) in row.iter().zip(&solved[..last - k]) {
+                s -= u * yj;
+            }
+            head[k] = s * self.inv_pivot[k];
         }
     }
 }
