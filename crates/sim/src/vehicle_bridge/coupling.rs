@@ -121,7 +121,7 @@ impl Simulation {
             }
             e[self.wheel_dof[k]] += s * w.outputs[k].force.abs();
         }
-        self.a_matrix.solve_abs_in_place(e);
+        self.a_matrix.solve_abs_at(e, &self.wheel_dof);
         let mut floor = 0.0f64;
         for k in 0..self.contacts.len() {
             let iw = self.wheel_dof[k];

@@ -480,6 +480,44 @@ impl BlockDiagonal {
     /// bound on how an error vector of x's magnitudes propagates through a solve).
     pub fn solve_abs_in_place(&self, x: &mut [f64]) {
         self.dense_apply(x, DensePart::AbsInverse, |_| None);
+        self.small_abs(x);
+    }
+
+    /// [`Self::solve_abs_in_place`] where only the entries at the indices `rows` and outside
+    /// the dense blocks are wanted: a dense block's other entries are left as they were (the
+    /// wanted ones are the same sums in the same order, bit for bit). The force floor needs
+    /// `|A⁻¹| e` at the wheels only, a third of an articulated rake's rows.
+    pub fn solve_abs_at(&self, x: &mut [f64], rows: &[usize]) {
+        self.with_scratch(|xs, out| {
+            for (d, b) in self.dense.iter().enumerate() {
+                let m = b.indices.len();
+                let xs = &mut xs[..m];
+                for (v, &i) in xs.iter_mut().zip(&b.indices) {
+                    *v = x[i];
+                }
+                // The wanted rows of this block, computed from its entries of x before any
+                // is overwritten.
+                let mut count = 0;
+                for &i in rows {
+                    if self.owner.get(i).copied().flatten() == Some(Owner::Dense(d)) {
+                        let r = self.local[i];
+                        out[count] = row_dot(&b.inverse[r * m..(r + 1) * m], xs, true);
+                        count += 1;
+                    }
+                }
+                let wanted = rows
+                    .iter()
+                    .filter(|&&i| self.owner.get(i).copied().flatten() == Some(Owner::Dense(d)));
+                for (&i, o) in wanted.zip(&out[..count]) {
+                    x[i] = *o;
+                }
+            }
+        });
+        self.small_abs(x);
+    }
+
+    /// `x ← |B⁻¹| x` over the 1×1 and 2×2 blocks.
+    fn small_abs(&self, x: &mut [f64]) {
         for &(i, j, inv) in &self.blocks {
             if j == NONE {
                 x[i] *= inv[0].abs();
