@@ -4,16 +4,16 @@
 //! An articulated rake of n bodies is a chain: body j is coupled only to bogies j and j + 1,
 //! a bogie only to its wheelsets, so its 6n + 4 DOFs, ordered along the chain, give a matrix
 //! of half-bandwidth p ≈ 5 whatever n. The ordering is found from the block's non-zeros by
-//! the reverse Cuthill–McKee algorithm (Saad, *Iterative Methods for Sparse Linear Systems*,
-//! §3.3.1; references.md §R4.2), so nothing depends on how the vehicle numbers its DOFs. The
-//! block is then factorised once per step size by an LU factorisation of the band without
-//! pivoting (Golub & Van Loan, Algorithm 4.3.1, band Gaussian elimination; references.md
-//! §R4.1): A = c_M M + c_C C + c_K K with symmetric positive definite M and symmetric positive
+//! the reverse Cuthill–McKee algorithm (Cuthill & McKee 1969; Saad, *Iterative Methods for
+//! Sparse Linear Systems*, §3.3; references.md §R4.5), so nothing depends on how the vehicle
+//! numbers its DOFs. The block is then factorised once per step size by an LU factorisation of
+//! the band without pivoting (Golub & Van Loan, §4.3, band Gaussian elimination; references.md
+//! §R4.5): A = c_M M + c_C C + c_K K with symmetric positive definite M and symmetric positive
 //! semi-definite C and K is symmetric positive definite, for which elimination without
 //! pivoting is stable (Golub & Van Loan §4.2). Cost O(m p²) to factorise and O(m p) per solve
 //! instead of O(m²) for the dense inverse. The factorisation is checked against the dense
 //! inverse on one right-hand side and refused (the dense inverse is then used) if they differ
-//! by more than [`ACCEPT`].
+//! by more than 1e-10 (relative).
 //!
 //! [`SparseRows`] stores the block's non-zeros row by row in column order, so that `A x` sums
 //! the same non-zero products in the same order as the dense row (bit-identical).
@@ -87,7 +87,7 @@ pub struct BandedLu {
 impl BandedLu {
     /// The band factorisation of the row-major m × m `entries`, if it is worth it (the band
     /// solve costs at most a quarter of the dense one) and agrees with `inverse` (row-major,
-    /// the dense inverse) to [`ACCEPT`] on one right-hand side; otherwise `None`.
+    /// the dense inverse) to 1e-10 (relative) on one right-hand side; otherwise `None`.
     pub fn new(entries: &[f64], inverse: &[f64], m: usize) -> Option<Self> {
         let order = reverse_cuthill_mckee(entries, m);
         let mut pos = vec![0; m];

@@ -126,6 +126,20 @@ impl CapacitanceWork {
             self.reused += 1;
             return;
         }
+        self.solve_wheel_fresh(a, wheel, g, pattern, false);
+        self.key[wheel].set(a.version(), g, pattern);
+    }
+
+    /// A⁻¹ĝ of `wheel` into `ainv_g[wheel]` (with the folded blocks' factorisations if
+    /// `folded`), its support and blocks.
+    fn solve_wheel_fresh(
+        &mut self,
+        a: &BlockDiagonal,
+        wheel: usize,
+        g: &[f64],
+        pattern: &[usize],
+        folded: bool,
+    ) {
         self.solves += 1;
         let x = &mut self.ainv_g[wheel];
         for &i in &self.support[wheel] {
@@ -135,18 +149,19 @@ impl CapacitanceWork {
             x[i] = g[i];
         }
         self.stamp += 1;
-        a.solve_pattern_in_place(
+        let (used, lus) = (&self.fold_used, &self.fold_lu);
+        a.solve_pattern_replacing(
             x,
             pattern,
             &mut self.support[wheel],
             &mut self.blocks[wheel],
             &mut self.mark,
             self.stamp,
+            |d| (folded && used[d]).then(|| &lus[d]),
         );
         let values = &mut self.on_support[wheel];
         values.clear();
         values.extend(self.support[wheel].iter().map(|&i| x[i]));
-        self.key[wheel].set(a.version(), g, pattern);
     }
 
     /// Folds the compliant wheels of `active` that are off the span (ĝ and v on the wheel's
@@ -225,28 +240,7 @@ impl CapacitanceWork {
         g: &[f64],
         pattern: &[usize],
     ) {
-        self.solves += 1;
-        let x = &mut self.ainv_g[wheel];
-        for &i in &self.support[wheel] {
-            x[i] = 0.0;
-        }
-        for &i in pattern {
-            x[i] = g[i];
-        }
-        self.stamp += 1;
-        let (used, lus) = (&self.fold_used, &self.fold_lu);
-        a.solve_pattern_replacing(
-            x,
-            pattern,
-            &mut self.support[wheel],
-            &mut self.blocks[wheel],
-            &mut self.mark,
-            self.stamp,
-            |d| used[d].then(|| &lus[d]),
-        );
-        let values = &mut self.on_support[wheel];
-        values.clear();
-        values.extend(self.support[wheel].iter().map(|&i| x[i]));
+        self.solve_wheel_fresh(a, wheel, g, pattern, true);
         self.key[wheel] = SolveKey::default();
     }
 
