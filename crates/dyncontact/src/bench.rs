@@ -340,6 +340,94 @@ pub fn sweep() -> Result<()> {
     if all != one {
         anyhow::bail!("the sweep depends on the thread count");
     }
+    sweep_interaction(cores)
+}
+
+/// The interaction model's row of `dyncontact bench sweep`: a representative subset of the
+/// HSLM-A envelope (A1, the longest rake, and A10, the shortest, at 140, 280 and 420 km/h;
+/// Hertz contact at the default Δt) run on all cores and on one, and the full envelope's time
+/// extrapolated from the one-thread cost per step and the envelope's number of steps.
+fn sweep_interaction(cores: usize) -> Result<()> {
+    let interaction = |names: &str| -> Result<sim::config::sweep::SweepConfig> {
+        let text = SWEEP_BENCH.replace(
+            "names = [\"HSLM-A\"]\n",
+            &format!("names = [{names}]\nmodel = \"interaction\"\n"),
+        ) + "[contact]\nmodel = \"hertz\"\n";
+        match sim::config::load(&text, std::path::Path::new("."), &Default::default())? {
+            sim::config::ScenarioConfig::Sweep(c) => Ok(*c),
+            _ => anyhow::bail!("the sweep benchmark is not a sweep scenario"),
+        }
+    };
+    let full = interaction("\"HSLM-A\"")?;
+    let subset = interaction("\"HSLM-A1\", \"HSLM-A10\"")?;
+    let subset = sim::config::sweep::SweepConfig {
+        spec: sim::sweep::SweepSpec {
+            speeds: vec![38.88888888888889, 77.77777777777777, 116.66666666666667],
+            ..subset.spec
+        },
+        ..subset
+    };
+    // The full envelope's steps (each passage: the exit of its last axle plus the free
+    // vibration, at its train's Δt).
+    let length = full.bridge.basis.length();
+    let sim::sweep::SweepModel::Interaction(model) = &full.spec.model else {
+        anyhow::bail!("the interaction benchmark is not an interaction sweep");
+    };
+    let mut full_steps = 0.0;
+    for (i, t) in full.spec.trains.iter().enumerate() {
+        for &v in &full.spec.speeds {
+            full_steps +=
+                ((length + t.length()) / v + full.spec.free_vibration) / model.trains[i].dt;
+        }
+    }
+    // (wall [s], CPU time of the pool's threads [s] (one thread only: its own), passages)
+    let run = |threads: usize| -> Result<(f64, f64, Vec<sim::sweep::Passage>)> {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()?;
+        let start = Instant::now();
+        let (cpu, result) = pool.install(|| {
+            let cpu0 = crate::bench_track::thread_cpu_time();
+            let result = sim::sweep::run(
+                subset.bridge.basis.as_ref(),
+                &subset.bridge.damping,
+                &subset.spec,
+                sim::sweep::Shard::ALL,
+                &|| true,
+            );
+            (crate::bench_track::thread_cpu_time() - cpu0, result)
+        });
+        Ok((start.elapsed().as_secs_f64(), cpu, result?))
+    };
+    let (t_all, _, all) = run(cores)?;
+    let (t_one, cpu_one, one) = run(1)?;
+    let steps: usize = all.iter().map(|p| p.peaks.steps).sum();
+    println!(
+        "interaction model (bogie power cars and an articulated rake, Hertz contact, default dt): HSLM-A1 and A10 at 140, 280, 420 km/h, {} passages, {steps} time steps",
+        all.len()
+    );
+    println!(
+        "{:>8} {:>12} {:>16} {:>14}",
+        "threads", "wall [s]", "s per passage", "µs per step"
+    );
+    for (threads, t) in [(cores, t_all), (1, t_one)] {
+        println!(
+            "{threads:>8} {t:>12.3} {:>16.3} {:>14.2}",
+            t / all.len() as f64,
+            1e6 * t / steps as f64
+        );
+    }
+    let per_step = 1e6 * cpu_one / steps as f64;
+    let extrapolated = 1e-6 * per_step * full_steps / cores as f64;
+    println!(
+        "one thread: {cpu_one:.3} s of CPU, {per_step:.2} µs per step; full HSLM-A envelope ({} passages, {:.3e} steps): extrapolated {extrapolated:.0} s on {cores} idle cores (target <= 60 s); results with {cores} threads and 1 thread: {}",
+        full.spec.trains.len() * full.spec.speeds.len(),
+        full_steps,
+        if all == one { "identical" } else { "DIFFERENT" }
+    );
+    if all != one {
+        anyhow::bail!("the interaction sweep depends on the thread count");
+    }
     Ok(())
 }
 

@@ -22,7 +22,7 @@ fn scenario(approach: Option<f64>) -> String {
 /// CPU time of the calling thread \[s\] (Linux: /proc/thread-self/schedstat, nanoseconds on
 /// the CPU), or NaN where unavailable. On a shared machine the wall time includes waiting for
 /// a core; the CPU time does not.
-fn thread_cpu_time() -> f64 {
+pub(crate) fn thread_cpu_time() -> f64 {
     std::fs::read_to_string("/proc/thread-self/schedstat")
         .ok()
         .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())

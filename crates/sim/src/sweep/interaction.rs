@@ -3,14 +3,16 @@
 //! models (quarter cars, sprung masses, bogie vehicles, articulated trains) with the wheel–rail
 //! contact law of the sweep's `[contact]` table, instead of the train's static axle loads.
 //! The train starts with its leading axle at the span's entry (x = 0), the rest of it on the
-//! rigid approach track in static equilibrium, and runs until its last axle has left the span
-//! plus the free-vibration time. The peaks at the output points are taken from the modal state
+//! rigid approach track in static equilibrium, and runs coupled until its last axle has left
+//! the span; the free vibration that follows is the exact modal recurrence of the unloaded
+//! bridge (the vehicles, on the rigid track, no longer act on it). The peaks at the output points are taken from the modal state
 //! of every step, w(x_p) = Σ_j w_j(x_p) q_j and ẅ(x_p) = Σ_j w_j(x_p) q̈_j, over the same modes as
 //! the moving-force model; the quasi-static deflection (for φ') is that of the train's static
 //! axle loads (the moving-force passage's). References: docs/sweep.md, references.md §T2.
 
 use std::sync::Arc;
 
+use beam::sdof::PiecewiseLinearSdof;
 use beam::{ModalBasis, ModalDamping, PassagePeaks};
 
 use crate::vehicle_bridge::{
@@ -91,12 +93,7 @@ pub fn history(
 ) -> Result<Vec<(f64, f64, f64)>, VehicleBridgeError> {
     let m = model.basis.n_modes();
     let vehicles = &model.trains[train];
-    let last = vehicles
-        .wheels
-        .iter()
-        .map(|w| w.position)
-        .chain(vehicles.forces.iter().map(|f| f.position))
-        .fold(0.0f64, f64::min);
+    let last = rearmost(vehicles);
     let steps = ((model.basis.length() - last) / speed + free_vibration) / vehicles.dt;
     let every = ((steps / samples.max(1) as f64).ceil() as usize).max(1);
     let mut out = Vec::new();
@@ -130,11 +127,10 @@ fn passage_with(
     let length = model.basis.length();
     let m = model.basis.n_modes();
     let points = point_shapes.len() / m.max(1);
-    let last = vehicles
-        .wheels
-        .iter()
-        .map(|w| w.position)
-        .fold(0.0f64, f64::min);
+    let exit = (length - rearmost(vehicles)) / speed;
+    let dt = vehicles.dt;
+    // The steps of the passage and its free vibration (as `Simulation::planned_steps`).
+    let total_steps = ((exit + free_vibration) / dt - 1e-9).ceil().max(0.0) as usize;
     let scenario = Scenario {
         bridge: Box::new(Arc::clone(&model.basis)),
         damping: model.damping.clone(),
@@ -145,8 +141,8 @@ fn passage_with(
         geometry: model.geometry,
         irregularity: Irregularity::None,
         integrator: model.integrator,
-        dt: vehicles.dt,
-        duration: Some((length - last) / speed + free_vibration),
+        dt,
+        duration: Some(exit),
         coupling: model.coupling,
         gravity: model.gravity,
         output_point: 0.5 * length,
@@ -159,8 +155,7 @@ fn passage_with(
         steps: 0,
     };
     let mut values = vec![(0.0, 0.0); points];
-    let summary = sim.run(|s| {
-        let (q, a) = (&s.state()[..m], &s.acceleration()[..m]);
+    let mut record = |t: f64, q: &[f64], a: &[f64]| {
         for p in 0..points {
             let shapes = &point_shapes[p * m..(p + 1) * m];
             let (mut w, mut acc) = (0.0, 0.0);
@@ -172,8 +167,65 @@ fn passage_with(
             peaks.acceleration[p] = peaks.acceleration[p].max(acc.abs());
             values[p] = (w, acc);
         }
-        observe(s.t(), &values);
-    })?;
-    peaks.steps = summary.solver.steps;
+        observe(t, &values);
+    };
+    let summary = sim.run(|s| record(s.t(), &s.state()[..m], &s.acceleration()[..m]))?;
+    let coupled = summary.solver.steps;
+    // Free vibration: every axle has left the span, so the modes no longer feel the vehicles
+    // (they load the rigid approach): the exact modal recurrence from the coupled run's final
+    // modal state, on the same time grid.
+    let tail = FreeVibration::new(model, dt)?;
+    let (mut q, mut v) = (sim.state()[..m].to_vec(), sim.velocity()[..m].to_vec());
+    let mut a = vec![0.0; m];
+    for step in coupled + 1..=total_steps {
+        tail.step(&mut q, &mut v, &mut a);
+        record(step as f64 * dt, &q, &a);
+    }
+    peaks.steps = coupled.max(total_steps);
     Ok(peaks)
+}
+
+/// The rearmost axle's position (wheels and moving forces) \[m\] (≤ 0).
+fn rearmost(vehicles: &TrainVehicles) -> f64 {
+    vehicles
+        .wheels
+        .iter()
+        .map(|w| w.position)
+        .chain(vehicles.forces.iter().map(|f| f.position))
+        .fold(0.0f64, f64::min)
+}
+
+/// The free vibration of the bridge modes: q̈_j + c_j q̇_j + ω_j² q_j = 0 (the mass-normalised
+/// modal equations of the coupled model without loads), advanced by the exact propagator of
+/// each mode (`beam::sdof::PiecewiseLinearSdof` with zero load, the moving-force sweep's
+/// recurrence; references.md §T2), with q̈_j taken from the equation at each step.
+struct FreeVibration {
+    steppers: Vec<PiecewiseLinearSdof>,
+    omegas: Vec<f64>,
+    damping: Vec<f64>,
+}
+
+impl FreeVibration {
+    fn new(model: &InteractionModel, dt: f64) -> Result<Self, VehicleBridgeError> {
+        let omegas = model.basis.circular_frequencies().to_vec();
+        let damping = model.damping.velocity_coefficients(&omegas)?;
+        let steppers = omegas
+            .iter()
+            .zip(&damping)
+            .map(|(&w, &c)| PiecewiseLinearSdof::new(w, c, dt))
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(Self {
+            steppers,
+            omegas,
+            damping,
+        })
+    }
+
+    /// One step of (q, q̇), and q̈ at its end.
+    fn step(&self, q: &mut [f64], v: &mut [f64], a: &mut [f64]) {
+        for (j, stepper) in self.steppers.iter().enumerate() {
+            (q[j], v[j]) = stepper.step(q[j], v[j], 0.0, 0.0);
+            a[j] = -self.damping[j] * v[j] - self.omegas[j] * self.omegas[j] * q[j];
+        }
+    }
 }

@@ -125,7 +125,7 @@ impl Simulation {
             }
             e[self.wheel_dof[k]] += s * w.outputs[k].force.abs();
         }
-        self.a_matrix.solve_abs_in_place(e);
+        self.a_matrix.solve_abs_at(e, &self.wheel_dof);
         for &k in live {
             let iw = self.wheel_dof[k];
             let shapes = &w.shape_at_wheel[k];

@@ -3,6 +3,7 @@
 //! stored with the block inverses; full, pattern and absolute-value solves and products.
 
 use super::Singular;
+use super::banded::{BandedLu, SparseRows};
 
 /// A block-diagonal matrix (up to a permutation) with 1×1 and 2×2 blocks and dense blocks
 /// of a multibody vehicle (any index set, at most [`MAX_DENSE_BLOCK`] indices), stored with
@@ -18,6 +19,8 @@ pub struct BlockDiagonal {
     dense: Vec<DenseBlock>,
     /// The block of each index: `Some(Small(i))` (1×1/2×2 block i) or `Some(Dense(i))`.
     owner: Vec<Option<Owner>>,
+    /// The position of each index of a dense block within it.
+    local: Vec<usize>,
     /// Changes whenever the matrix does (unique across all matrices of the process), so that
     /// solves cached against it (`low_rank::CapacitanceWork`) know when they are stale.
     version: u64,
@@ -50,6 +53,55 @@ struct DenseBlock {
     indices: Vec<usize>,
     entries: Vec<f64>,
     inverse: Vec<f64>,
+    /// The band factorisation of a large sparse block (solves), if worth it.
+    banded: Option<BandedLu>,
+    /// The non-zeros of a large block (products).
+    sparse: Option<SparseRows>,
+}
+
+/// The inverse of the row-major m × m `entries` by Gauss–Jordan elimination with partial
+/// pivoting; `None` if it is singular or not finite.
+pub(super) fn gauss_jordan_inverse(entries: &[f64], m: usize) -> Option<Vec<f64>> {
+    let mut a = entries.to_vec();
+    let mut inv = vec![0.0; m * m];
+    for i in 0..m {
+        inv[i * m + i] = 1.0;
+    }
+    let scale = a.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+    if !(scale.is_finite() && scale > 0.0) {
+        return None;
+    }
+    for col in 0..m {
+        let pivot = (col..m)
+            .max_by(|&r, &q| a[r * m + col].abs().total_cmp(&a[q * m + col].abs()))
+            .unwrap_or(col);
+        if a[pivot * m + col].abs() <= 1e-14 * scale {
+            return None;
+        }
+        if pivot != col {
+            for j in 0..m {
+                a.swap(pivot * m + j, col * m + j);
+                inv.swap(pivot * m + j, col * m + j);
+            }
+        }
+        let p = a[col * m + col];
+        for j in 0..m {
+            a[col * m + j] /= p;
+            inv[col * m + j] /= p;
+        }
+        for r in 0..m {
+            if r != col {
+                let f = a[r * m + col];
+                if f != 0.0 {
+                    for j in 0..m {
+                        a[r * m + j] -= f * a[col * m + j];
+                        inv[r * m + j] -= f * inv[col * m + j];
+                    }
+                }
+            }
+        }
+    }
+    inv.iter().all(|v| v.is_finite()).then_some(inv)
 }
 
 /// Which matrix of a dense block [`BlockDiagonal::dense_apply`] applies.
@@ -67,6 +119,20 @@ fn apply_dense_inverse(blk: &DenseBlock, x: &mut [f64]) {
         apply_dense_inverse_with(blk, x, &mut [0.0; SMALL_DENSE_BLOCK]);
     } else {
         apply_dense_inverse_with(blk, x, &mut [0.0; MAX_DENSE_BLOCK]);
+    }
+}
+
+/// `x ← B⁻¹ x` on a dense block's indices by the band factorisation `lu` (of B or of a
+/// changed B).
+fn apply_banded(lu: &BandedLu, blk: &DenseBlock, x: &mut [f64]) {
+    let m = blk.indices.len();
+    let (mut xs, mut buf) = ([0.0; MAX_DENSE_BLOCK], [0.0; MAX_DENSE_BLOCK]);
+    for (v, &i) in xs.iter_mut().zip(&blk.indices) {
+        *v = x[i];
+    }
+    lu.solve(&mut xs[..m], &mut buf);
+    for (v, &i) in xs.iter().zip(&blk.indices) {
+        x[i] = *v;
     }
 }
 
@@ -136,6 +202,7 @@ impl BlockDiagonal {
             entries: Vec::with_capacity(n),
             dense: Vec::new(),
             owner: vec![None; n],
+            local: vec![0; n],
             version: next_version(),
             held: Vec::new(),
         }
@@ -185,55 +252,27 @@ impl BlockDiagonal {
         if m == 0 || m > MAX_DENSE_BLOCK || entries.len() != m * m {
             return Err(SINGULAR_BLOCK);
         }
-        let mut a = entries.to_vec();
-        let mut inv = vec![0.0; m * m];
-        for i in 0..m {
-            inv[i * m + i] = 1.0;
-        }
-        let scale = a.iter().fold(0.0f64, |s, v| s.max(v.abs()));
-        if !(scale.is_finite() && scale > 0.0) {
-            return Err(SINGULAR_BLOCK);
-        }
-        for col in 0..m {
-            let pivot = (col..m)
-                .max_by(|&r, &q| a[r * m + col].abs().total_cmp(&a[q * m + col].abs()))
-                .unwrap_or(col);
-            if a[pivot * m + col].abs() <= 1e-14 * scale {
-                return Err(SINGULAR_BLOCK);
-            }
-            if pivot != col {
-                for j in 0..m {
-                    a.swap(pivot * m + j, col * m + j);
-                    inv.swap(pivot * m + j, col * m + j);
-                }
-            }
-            let p = a[col * m + col];
-            for j in 0..m {
-                a[col * m + j] /= p;
-                inv[col * m + j] /= p;
-            }
-            for r in 0..m {
-                if r != col {
-                    let f = a[r * m + col];
-                    if f != 0.0 {
-                        for j in 0..m {
-                            a[r * m + j] -= f * a[col * m + j];
-                            inv[r * m + j] -= f * inv[col * m + j];
-                        }
-                    }
-                }
-            }
-        }
-        if inv.iter().any(|v| !v.is_finite()) {
-            return Err(SINGULAR_BLOCK);
-        }
-        for &i in indices {
+        let inverse = gauss_jordan_inverse(entries, m).ok_or(SINGULAR_BLOCK)?;
+        // A large sparse block (an articulated rake) is solved in its band and multiplied by
+        // its non-zeros (module `banded`); a small one (a bogie vehicle) densely.
+        let (banded, sparse) = if m > SMALL_DENSE_BLOCK {
+            (
+                BandedLu::new(entries, &inverse, m),
+                Some(SparseRows::new(entries, m)),
+            )
+        } else {
+            (None, None)
+        };
+        for (r, &i) in indices.iter().enumerate() {
             self.owner[i] = Some(Owner::Dense(self.dense.len()));
+            self.local[i] = r;
         }
         self.dense.push(DenseBlock {
             indices: indices.to_vec(),
             entries: entries.to_vec(),
-            inverse: inv,
+            inverse,
+            banded,
+            sparse,
         });
         self.version = next_version();
         Ok(())
@@ -241,7 +280,12 @@ impl BlockDiagonal {
 
     /// `x ← B x` over the dense blocks (B = the inverses or their absolute values), with a
     /// stack buffer (no allocation).
-    fn dense_apply(&self, x: &mut [f64], which: DensePart) {
+    fn dense_apply<'r>(
+        &self,
+        x: &mut [f64],
+        which: DensePart,
+        replaced: impl Fn(usize) -> Option<&'r BandedLu>,
+    ) {
         // The block's entries of x are gathered once, so that each row is a dot product of two
         // slices (the same products summed in the same order as entry by entry).
         self.with_scratch(|xs, buf| {
@@ -254,12 +298,22 @@ impl BlockDiagonal {
                 for (v, &i) in xs.iter_mut().zip(&b.indices) {
                     *v = x[i];
                 }
-                rows_times(
-                    &b.inverse,
-                    xs,
-                    &mut buf[..m],
-                    which == DensePart::AbsInverse,
-                );
+                let banded = match which {
+                    DensePart::Inverse => replaced(d).or(b.banded.as_ref()),
+                    DensePart::AbsInverse => None,
+                };
+                match (banded, which) {
+                    (Some(lu), DensePart::Inverse) => {
+                        lu.solve(xs, buf);
+                        buf[..m].copy_from_slice(xs);
+                    }
+                    _ => rows_times(
+                        &b.inverse,
+                        xs,
+                        &mut buf[..m],
+                        which == DensePart::AbsInverse,
+                    ),
+                }
                 for (r, &i) in b.indices.iter().enumerate() {
                     x[i] = buf[r];
                 }
@@ -280,6 +334,25 @@ impl BlockDiagonal {
         } else {
             f(&mut [0.0; MAX_DENSE_BLOCK], &mut [0.0; MAX_DENSE_BLOCK]);
         }
+    }
+
+    /// For an index of a dense block with a band factorisation: (the dense block's number,
+    /// the index's position in it).
+    pub fn banded_block(&self, i: usize) -> Option<(usize, usize)> {
+        match self.owner.get(i).copied().flatten()? {
+            Owner::Dense(d) if self.dense[d].banded.is_some() => Some((d, self.local[i])),
+            _ => None,
+        }
+    }
+
+    /// The band factorisation of dense block d, if it has one.
+    pub fn banded(&self, d: usize) -> Option<&BandedLu> {
+        self.dense.get(d)?.banded.as_ref()
+    }
+
+    /// The number of dense blocks.
+    pub fn dense_count(&self) -> usize {
+        self.dense.len()
     }
 
     /// Dimension n.
@@ -352,6 +425,22 @@ impl BlockDiagonal {
         mark: &mut [u64],
         stamp: u64,
     ) {
+        self.solve_pattern_replacing(x, pattern, support, blocks, mark, stamp, |_| None);
+    }
+
+    /// [`Self::solve_pattern_in_place`] with the factorisation `replaced(d)` instead of dense
+    /// block d's own where it is given (as [`Self::solve_in_place_replacing`]).
+    #[allow(clippy::too_many_arguments)]
+    pub fn solve_pattern_replacing<'r>(
+        &self,
+        x: &mut [f64],
+        pattern: &[usize],
+        support: &mut Vec<usize>,
+        blocks: &mut Vec<usize>,
+        mark: &mut [u64],
+        stamp: u64,
+        replaced: impl Fn(usize) -> Option<&'r BandedLu>,
+    ) {
         support.clear();
         blocks.clear();
         for &i in pattern {
@@ -382,7 +471,10 @@ impl BlockDiagonal {
                 }
                 Owner::Dense(d) => {
                     let blk = &self.dense[d];
-                    apply_dense_inverse(blk, x);
+                    match replaced(d) {
+                        Some(lu) => apply_banded(lu, blk, x),
+                        None => apply_dense_inverse(blk, x),
+                    }
                     support.extend_from_slice(&blk.indices);
                 }
             }
@@ -391,7 +483,17 @@ impl BlockDiagonal {
 
     /// `x ← A⁻¹ x` in place (held dense blocks: x unchanged there).
     pub fn solve_in_place(&self, x: &mut [f64]) {
-        self.dense_apply(x, DensePart::Inverse);
+        self.solve_in_place_replacing(x, |_| None);
+    }
+
+    /// [`Self::solve_in_place`] with the factorisation `replaced(d)` instead of dense block
+    /// d's own where it is given (a block changed by folded contacts, `low_rank`).
+    pub fn solve_in_place_replacing<'r>(
+        &self,
+        x: &mut [f64],
+        replaced: impl Fn(usize) -> Option<&'r BandedLu>,
+    ) {
+        self.dense_apply(x, DensePart::Inverse, replaced);
         for &(i, j, inv) in &self.blocks {
             if j == NONE {
                 x[i] *= inv[0];
@@ -406,7 +508,48 @@ impl BlockDiagonal {
     /// `x ← |A⁻¹| x` in place, with the entrywise absolute value of each block's inverse (a
     /// bound on how an error vector of x's magnitudes propagates through a solve).
     pub fn solve_abs_in_place(&self, x: &mut [f64]) {
-        self.dense_apply(x, DensePart::AbsInverse);
+        self.dense_apply(x, DensePart::AbsInverse, |_| None);
+        self.small_abs(x);
+    }
+
+    /// [`Self::solve_abs_in_place`] where only the entries at the indices `rows` and outside
+    /// the dense blocks are wanted: a dense block's other entries are left as they were (the
+    /// wanted ones are the same sums in the same order, bit for bit). The force floor needs
+    /// `|A⁻¹| e` at the wheels only, a third of an articulated rake's rows.
+    pub fn solve_abs_at(&self, x: &mut [f64], rows: &[usize]) {
+        self.with_scratch(|xs, out| {
+            for (d, b) in self.dense.iter().enumerate() {
+                if self.is_held(d) {
+                    continue;
+                }
+                let m = b.indices.len();
+                let xs = &mut xs[..m];
+                for (v, &i) in xs.iter_mut().zip(&b.indices) {
+                    *v = x[i];
+                }
+                // The wanted rows of this block, computed from its entries of x before any
+                // is overwritten.
+                let mut count = 0;
+                for &i in rows {
+                    if self.owner.get(i).copied().flatten() == Some(Owner::Dense(d)) {
+                        let r = self.local[i];
+                        out[count] = row_dot(&b.inverse[r * m..(r + 1) * m], xs, true);
+                        count += 1;
+                    }
+                }
+                let wanted = rows
+                    .iter()
+                    .filter(|&&i| self.owner.get(i).copied().flatten() == Some(Owner::Dense(d)));
+                for (&i, o) in wanted.zip(&out[..count]) {
+                    x[i] = *o;
+                }
+            }
+        });
+        self.small_abs(x);
+    }
+
+    /// `x ← |B⁻¹| x` over the 1×1 and 2×2 blocks.
+    fn small_abs(&self, x: &mut [f64]) {
         for &(i, j, inv) in &self.blocks {
             if j == NONE {
                 x[i] *= inv[0].abs();
@@ -430,7 +573,10 @@ impl BlockDiagonal {
                 for (v, &i) in xs.iter_mut().zip(&b.indices) {
                     *v = x[i];
                 }
-                rows_times(&b.entries, xs, &mut out[..m], false);
+                match &b.sparse {
+                    Some(rows) => rows.times(xs, &mut out[..m]),
+                    None => rows_times(&b.entries, xs, &mut out[..m], false),
+                }
                 for (&i, o) in b.indices.iter().zip(&out[..m]) {
                     y[i] = *o;
                 }

@@ -4,6 +4,7 @@
 
 use integrate::DenseLu;
 
+use super::banded::BandedLu;
 use super::{BlockDiagonal, Singular};
 
 /// Work space of [`contact_update`]: A⁻¹ĝ per wheel with its support and blocks, the
@@ -44,6 +45,16 @@ pub struct CapacitanceWork {
     /// Solves done and reused (statistics for benchmarks and tests).
     solves: u64,
     reused: u64,
+    /// Per position in `active`: the wheel is folded into its block's band ([`contact_update`],
+    /// "Folding").
+    folded: Vec<bool>,
+    /// Per dense block of A: the diagonal additions of its folded wheels (block position,
+    /// value), whether it has any, and the factorisation of the block with them.
+    fold_add: Vec<Vec<(usize, f64)>>,
+    fold_used: Vec<bool>,
+    fold_lu: Vec<BandedLu>,
+    /// Folded wheels so far (statistics).
+    folds: u64,
 }
 
 /// What a stored A⁻¹ĝ was computed from.
@@ -115,6 +126,20 @@ impl CapacitanceWork {
             self.reused += 1;
             return;
         }
+        self.solve_wheel_fresh(a, wheel, g, pattern, false);
+        self.key[wheel].set(a.version(), g, pattern);
+    }
+
+    /// A⁻¹ĝ of `wheel` into `ainv_g[wheel]` (with the folded blocks' factorisations if
+    /// `folded`), its support and blocks.
+    fn solve_wheel_fresh(
+        &mut self,
+        a: &BlockDiagonal,
+        wheel: usize,
+        g: &[f64],
+        pattern: &[usize],
+        folded: bool,
+    ) {
         self.solves += 1;
         let x = &mut self.ainv_g[wheel];
         for &i in &self.support[wheel] {
@@ -124,18 +149,104 @@ impl CapacitanceWork {
             x[i] = g[i];
         }
         self.stamp += 1;
-        a.solve_pattern_in_place(
+        let (used, lus) = (&self.fold_used, &self.fold_lu);
+        a.solve_pattern_replacing(
             x,
             pattern,
             &mut self.support[wheel],
             &mut self.blocks[wheel],
             &mut self.mark,
             self.stamp,
+            |d| (folded && used[d]).then(|| &lus[d]),
         );
         let values = &mut self.on_support[wheel];
         values.clear();
         values.extend(self.support[wheel].iter().map(|&i| x[i]));
-        self.key[wheel].set(a.version(), g, pattern);
+    }
+
+    /// Folds the compliant wheels of `active` that are off the span (ĝ and v on the wheel's
+    /// DOF only) and belong to a banded block of A into that block ([`contact_update`],
+    /// "Folding"): marks them in `folded` and factorises each block changed. False (nothing
+    /// folded) if there are none, or if a changed block is singular (the capacitance form
+    /// then takes every wheel, as without folding).
+    #[allow(clippy::too_many_arguments)]
+    fn fold_off_span(
+        &mut self,
+        a: &BlockDiagonal,
+        s: f64,
+        g_hat: &[impl AsRef<[f64]>],
+        v: &[impl AsRef<[f64]>],
+        pattern: &[impl AsRef<[usize]>],
+        active: &[usize],
+        compliance: &[f64],
+    ) -> bool {
+        let nd = a.dense_count();
+        self.fold_add.resize_with(nd, Vec::new);
+        self.fold_lu.resize_with(nd, BandedLu::default);
+        self.fold_used.clear();
+        self.fold_used.resize(nd, false);
+        for add in &mut self.fold_add {
+            add.clear();
+        }
+        self.folded.clear();
+        self.folded.resize(active.len(), false);
+        let mut any = false;
+        for (c, &wheel) in active.iter().enumerate() {
+            let &[i] = pattern[wheel].as_ref() else {
+                continue;
+            };
+            let Some((d, r)) = a.banded_block(i) else {
+                continue;
+            };
+            if compliance[c] > 0.0 {
+                let value = s * g_hat[wheel].as_ref()[i] * v[wheel].as_ref()[i] / compliance[c];
+                self.fold_add[d].push((r, value));
+                self.fold_used[d] = true;
+                self.folded[c] = true;
+                any = true;
+            }
+        }
+        for d in 0..nd {
+            if !self.fold_used[d] {
+                continue;
+            }
+            let base = a.banded(d).expect("a folded block is banded");
+            if !base.refactor_with_diagonal(&self.fold_add[d], &mut self.fold_lu[d]) {
+                self.fold_used.fill(false);
+                self.folded.fill(false);
+                return false;
+            }
+        }
+        if any {
+            self.folds += self.folded.iter().filter(|&&f| f).count() as u64;
+        }
+        any
+    }
+
+    /// Whether `pattern` touches a block changed by folding.
+    fn touches_fold(&self, a: &BlockDiagonal, pattern: &[usize]) -> bool {
+        pattern.iter().any(|&i| {
+            a.banded_block(i)
+                .is_some_and(|(d, _)| self.fold_used.get(d).copied().unwrap_or(false))
+        })
+    }
+
+    /// A_c⁻¹ĝ of `wheel` into `ainv_g[wheel]`, A_c being A with the folded wheels (not
+    /// kept for reuse: A_c changes with every update).
+    fn solve_wheel_folded(
+        &mut self,
+        a: &BlockDiagonal,
+        wheel: usize,
+        g: &[f64],
+        pattern: &[usize],
+    ) {
+        self.solve_wheel_fresh(a, wheel, g, pattern, true);
+        self.key[wheel] = SolveKey::default();
+    }
+
+    /// The wheels folded into a band so far ([`contact_update`], "Folding").
+    pub fn fold_count(&self) -> u64 {
+        self.folds
     }
 
     /// `vᵀA⁻¹g` of `wheel` for vectors zero outside `pattern` (over the blocks g touches; no
@@ -218,6 +329,17 @@ fn lu_of_size(lus: &mut Vec<DenseLu<f64>>, m: usize) -> &mut DenseLu<f64> {
 /// blocks), and each group is factorised on its own: a long train whose cars are mostly off the
 /// span costs O(wheels), not O(wheels³).
 ///
+/// **Folding.** A compliant wheel off the span has ĝ_c = g e_i and v_c = v e_i on its own DOF
+/// i only, so its term s ĝ_c v_cᵀ/compliance_c is one diagonal entry of A. When i belongs to a
+/// dense block with a band factorisation (an articulated rake, module `banded`), such wheels
+/// are folded into that block: A_c = A + Σ_folded s g v/compliance_c e_i e_iᵀ is factorised
+/// again in its band (O(m p²)), the right-hand side gets −s g δ̃_c/compliance_c at i, the
+/// remaining wheels (on the span, rigid, or of other blocks) take the capacitance form above
+/// with A_c in place of A, and each folded wheel's ΔF_c = (v Δx_i + δ̃_c)/compliance_c. The
+/// rake's capacitance group then holds its wheels on the span only, instead of all of them
+/// (42 for HSLM-A1, a dense 42 × 42 factorisation at every update). The same linear system,
+/// solved differently: equal to round-off (tested against the dense bordered solve).
+///
 /// Arguments: `pattern[c]` lists the indices where wheel c's vectors can be non-zero, in
 /// ascending order; `active` lists the wheels taking part (indices into `g_hat`, `v`, `pattern`);
 /// `compliance`, `delta_tilde` and `df` are indexed by position in `active`. On entry `x` holds
@@ -237,20 +359,46 @@ pub fn contact_update(
     work: &mut CapacitanceWork,
 ) -> Result<(), Singular> {
     let k = active.len();
-    a.solve_in_place(x);
     if k == 0 {
+        a.solve_in_place(x);
         return Ok(());
     }
     work.reserve(x.len(), g_hat.len(), a.block_count());
-    // A⁻¹ĝ_c on the blocks ĝ_c touches (the rest of ainv_g[wheel] is kept zero).
-    for &wheel in active {
-        work.solve_wheel(a, wheel, g_hat[wheel].as_ref(), pattern[wheel].as_ref());
+    let folding = work.fold_off_span(a, s, g_hat, v, pattern, active, compliance);
+    if folding {
+        // The folded wheels' −s ĝ δ̃ / compliance on the right-hand side.
+        for (c, &wheel) in active.iter().enumerate() {
+            if work.folded[c] && delta_tilde[c] != 0.0 {
+                let i = pattern[wheel].as_ref()[0];
+                x[i] -= s * g_hat[wheel].as_ref()[i] * delta_tilde[c] / compliance[c];
+            }
+        }
+        let (used, lus) = (&work.fold_used, &work.fold_lu);
+        a.solve_in_place_replacing(x, |d| used[d].then(|| &lus[d]));
+    } else {
+        a.solve_in_place(x);
+    }
+    let folded = |work: &CapacitanceWork, c: usize| folding && work.folded[c];
+    // A⁻¹ĝ_c (A_c⁻¹ĝ_c) on the blocks ĝ_c touches (the rest of ainv_g[wheel] is kept zero).
+    for (c, &wheel) in active.iter().enumerate() {
+        if folded(work, c) {
+            continue;
+        }
+        let (g, p) = (g_hat[wheel].as_ref(), pattern[wheel].as_ref());
+        if folding && work.touches_fold(a, p) {
+            work.solve_wheel_folded(a, wheel, g, p);
+        } else {
+            work.solve_wheel(a, wheel, g, p);
+        }
     }
     // Coupling groups: wheels touching a common block.
     let update = work.next_stamp();
     work.parent.clear();
     work.parent.extend(0..k);
     for c in 0..k {
+        if folded(work, c) {
+            continue;
+        }
         // The wheel last joined (the wheels on the span meet the same first wheel on every
         // mode block: one union is enough).
         let mut joined = usize::MAX;
@@ -278,7 +426,7 @@ pub fn contact_update(
         work.parent[c] = root;
     }
     for root in 0..k {
-        if work.parent[root] != root {
+        if work.parent[root] != root || folded(work, root) {
             continue;
         }
         work.group_start.push(work.order.len());
@@ -288,7 +436,7 @@ pub fn contact_update(
             }
         }
     }
-    work.group_start.push(k);
+    work.group_start.push(work.order.len());
     // vᵀx over the pattern (v is zero elsewhere).
     let v_dot =
         |c: usize, y: &[f64]| pattern_dot(pattern[active[c]].as_ref(), v[active[c]].as_ref(), y);
@@ -341,10 +489,20 @@ pub fn contact_update(
         }
     }
     for c in 0..k {
+        if folded(work, c) {
+            continue;
+        }
         let f = s * df[c];
         let wheel = active[c];
         for (&i, g) in work.support[wheel].iter().zip(&work.on_support[wheel]) {
             x[i] -= f * g;
+        }
+    }
+    // The folded wheels' force increments from the final Δx.
+    for (c, &wheel) in active.iter().enumerate() {
+        if folded(work, c) {
+            let i = pattern[wheel].as_ref()[0];
+            df[c] = (v[wheel].as_ref()[i] * x[i] + delta_tilde[c]) / compliance[c];
         }
     }
     Ok(())

@@ -16,8 +16,10 @@
 //! block or matrix is an error ([`Singular`]), never skipped.
 //!
 //! * [`block_diagonal`]: the step matrix A and its solves;
+//! * [`banded`]: the band factorisation and sparse rows of a large multibody block;
 //! * [`low_rank`]: the contact update and its dense reference.
 
+pub mod banded;
 pub mod block_diagonal;
 pub mod low_rank;
 

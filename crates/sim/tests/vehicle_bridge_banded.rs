@@ -1,0 +1,218 @@
+//! The band factorisation of an articulated rake's block of the step matrix, and the folding
+//! of its off-span wheels into it, against dense LU solves (faer) of the same matrices.
+
+use faer::linalg::solvers::Solve;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use sim::train::VehicleSpec;
+use sim::train::hslm_vehicles::interaction_train;
+use sim::vehicle_bridge::linalg::{
+    BlockDiagonal, CapacitanceWork, DenseWork, contact_update, dense_contact_update,
+};
+
+/// The step matrix A = M/(β Δt²) + γ C/(β Δt) + K (Newmark, β = 1/4, γ = 1/2, Δt = 1e-4 s)
+/// of HSLM-A`number`'s articulated rake, row-major, and its number of wheelsets.
+fn rake_step_matrix(number: usize) -> (Vec<f64>, usize, usize) {
+    let train = interaction_train(number, 9.81).unwrap();
+    let rake = train
+        .vehicles
+        .iter()
+        .find_map(|v| match v {
+            VehicleSpec::Articulated(a) => Some(a.matrices()),
+            _ => None,
+        })
+        .unwrap();
+    let d = rake.dofs();
+    let dt = 1e-4;
+    let (cm, cc) = (1.0 / (0.25 * dt * dt), 0.5 / (0.25 * dt));
+    let mut a = vec![0.0; d * d];
+    for i in 0..d {
+        for j in 0..d {
+            a[i * d + j] = cc * rake.damping[(i, j)] + rake.stiffness[(i, j)];
+        }
+        a[i * d + i] += cm * rake.mass[i];
+    }
+    (a, d, rake.own_dofs)
+}
+
+/// The largest entry-wise relative difference |a_i − b_i|/|b_i| (entries of b below 1e-9 of
+/// its largest count as that size: the modes' and the rake's entries differ by orders of
+/// magnitude, and a norm-wise difference would hide errors in the small ones).
+fn rel(a: &[f64], b: &[f64]) -> f64 {
+    let floor = 1e-9 * b.iter().fold(0.0f64, |m, y| m.max(y.abs()));
+    a.iter().zip(b).fold(0.0f64, |m, (x, y)| {
+        m.max((x - y).abs() / y.abs().max(floor))
+    })
+}
+
+/// The dense LU solve of the row-major n × n `a` (the reference).
+fn dense_solve(a: &[f64], n: usize, rhs: &[f64]) -> Vec<f64> {
+    let full = faer::Mat::from_fn(n, n, |i, j| a[i * n + j]);
+    let b = faer::Mat::from_fn(n, 1, |i, _| rhs[i]);
+    let x = full.partial_piv_lu().solve(&b);
+    (0..n).map(|i| x[(i, 0)]).collect()
+}
+
+/// A system of `modes` 1×1 modal blocks and the rake's block on the following indices
+/// (scattered: its DOF order reversed), with the rake's index of each vehicle DOF.
+fn rake_system(number: usize, modes: usize) -> (BlockDiagonal, Vec<usize>, usize) {
+    let (block, d, own) = rake_step_matrix(number);
+    let n = modes + d;
+    let mut a = BlockDiagonal::new(n);
+    for j in 0..modes {
+        a.push1(j, 1e9 * (1.0 + j as f64)).unwrap();
+    }
+    let indices: Vec<usize> = (0..d).map(|r| n - 1 - r).collect();
+    a.push_dense(&indices, &block).unwrap();
+    (a, indices, own)
+}
+
+/// HSLM-A1 (124 DOFs) and A10 (88 DOFs): the rake's block is solved in its band
+/// (half-bandwidth at most 6 whatever the number of bodies) and equals the dense LU solve of
+/// the same matrix to 1e-12 (relative, random right-hand sides; A has a condition number near
+/// 1e3 here, so round-off stays near 1e-14); the product A x by the block's non-zeros equals
+/// the dense product to 1e-15.
+#[test]
+fn rake_band_solve_equals_dense_lu() {
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    for number in [1usize, 10] {
+        let (a, _, _) = rake_system(number, 3);
+        let n = a.dimension();
+        let band = a.banded(0).expect("the rake's block is banded");
+        assert!(band.half_bandwidth() <= 6, "{}", band.half_bandwidth());
+        let dense = a.to_dense();
+        for _ in 0..4 {
+            let rhs: Vec<f64> = (0..n).map(|_| rng.random::<f64>() - 0.5).collect();
+            let reference = dense_solve(&dense, n, &rhs);
+            let mut x = rhs.clone();
+            a.solve_in_place(&mut x);
+            let e = rel(&x, &reference);
+            println!(
+                "HSLM-A{number}: n = {n}, half-bandwidth {}, band vs dense LU {e:.2e}",
+                band.half_bandwidth()
+            );
+            assert!(e < 1e-12, "{e}");
+            let mut y = vec![0.0; n];
+            a.mul(&rhs, &mut y);
+            let product: Vec<f64> = (0..n)
+                .map(|i| (0..n).map(|j| dense[i * n + j] * rhs[j]).sum())
+                .collect();
+            assert!(rel(&y, &product) < 1e-15);
+        }
+    }
+}
+
+/// The rake of HSLM-A1 over 3 modes, its first 4 wheels on the span (ĝ, v on the modes and the
+/// wheel), the others off it (the wheel only), one of those rigid and two out of contact. The
+/// update folds the compliant off-span wheels into the rake's band and keeps the rest in the
+/// capacitance form; it must equal the dense bordered solve (faer LU of the whole system) to
+/// 1e-12 in Δx and ΔF, also when the work space is reused with other compliances.
+#[test]
+fn folded_update_equals_dense_for_a_rake() {
+    let mut rng = ChaCha8Rng::seed_from_u64(17);
+    let modes = 3;
+    let (a, indices, own) = rake_system(1, modes);
+    let n = a.dimension();
+    let wheel_dofs: Vec<usize> = indices[own..].to_vec();
+    let nw = wheel_dofs.len();
+    let mut gs = Vec::new();
+    let mut vs = Vec::new();
+    let mut patterns = Vec::new();
+    for (k, &dof) in wheel_dofs.iter().enumerate() {
+        let (mut g, mut v) = (vec![0.0; n], vec![0.0; n]);
+        let mut pattern = Vec::new();
+        if k < 4 {
+            for j in 0..modes {
+                let w = rng.random::<f64>() * 2.0 - 1.0;
+                v[j] = -w;
+                g[j] = -w * (1.0 + 0.1 * (rng.random::<f64>() - 0.5));
+                pattern.push(j);
+            }
+        }
+        g[dof] = 1.0;
+        v[dof] = 1.0;
+        pattern.push(dof);
+        gs.push(g);
+        vs.push(v);
+        patterns.push(pattern);
+    }
+    let rigid = 20;
+    let active: Vec<usize> = (0..nw).filter(|&k| k != 7 && k != 30).collect();
+    let delta: Vec<f64> = active
+        .iter()
+        .map(|&k| if k == rigid { 1e-5 } else { 0.0 })
+        .collect();
+    let rhs: Vec<f64> = (0..n).map(|_| rng.random::<f64>() - 0.5).collect();
+    let mut work = CapacitanceWork::default();
+    for round in 0..2 {
+        let compliance: Vec<f64> = active
+            .iter()
+            .map(|&k| {
+                if k == rigid {
+                    0.0
+                } else {
+                    1.0 / (5e8 + 1e9 * rng.random::<f64>())
+                }
+            })
+            .collect();
+        let mut x = rhs.clone();
+        let mut df = vec![0.0; active.len()];
+        contact_update(
+            &a,
+            0.8,
+            &gs,
+            &vs,
+            &patterns,
+            &active,
+            &compliance,
+            &delta,
+            &mut x,
+            &mut df,
+            &mut work,
+        )
+        .unwrap();
+        let mut x2 = rhs.clone();
+        let mut df2 = vec![0.0; active.len()];
+        dense_contact_update(
+            &a,
+            0.8,
+            &gs,
+            &vs,
+            &active,
+            &compliance,
+            &delta,
+            &mut x2,
+            &mut df2,
+            &mut DenseWork::default(),
+        )
+        .unwrap();
+        let (ex, ef) = (rel(&x, &x2), rel(&df, &df2));
+        println!("round {round}: folded vs dense: state {ex:.2e}, forces {ef:.2e}");
+        assert!(ex < 1e-12 && ef < 1e-12, "{ex} {ef}");
+        let r = active.iter().position(|&k| k == rigid).unwrap();
+        let vdx: f64 = vs[rigid].iter().zip(&x).map(|(a, b)| a * b).sum();
+        assert!((vdx + delta[r]).abs() < 1e-10 * delta[r]);
+    }
+    // Every compliant off-span wheel in contact was folded, in both rounds.
+    let folded = active.iter().filter(|&&k| k >= 4 && k != rigid).count() as u64;
+    assert_eq!(work.fold_count(), 2 * folded);
+}
+
+/// `|A⁻¹| e` at the wheels only (the force floor's need) equals the full product there bit for
+/// bit, and the modes' entries too, for the rake of HSLM-A1 over 3 modes.
+#[test]
+fn absolute_solve_at_the_wheels_equals_the_full_one_there() {
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    let (a, indices, own) = rake_system(1, 3);
+    let n = a.dimension();
+    let wheels = &indices[own..];
+    let e: Vec<f64> = (0..n).map(|_| rng.random::<f64>()).collect();
+    let (mut full, mut at) = (e.clone(), e.clone());
+    a.solve_abs_in_place(&mut full);
+    a.solve_abs_at(&mut at, wheels);
+    for &i in wheels.iter().chain(&[0, 1, 2]) {
+        assert_eq!(full[i].to_bits(), at[i].to_bits(), "index {i}");
+    }
+    // The other entries are the full product's only by chance: some must differ here.
+    assert!(indices[..own].iter().any(|&i| full[i] != at[i]));
+}
