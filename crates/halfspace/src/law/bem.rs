@@ -1,6 +1,7 @@
 //! The boundary-element (half-space) contact law: NormCG at prescribed approach.
 
 use super::reuse::{FrozenSet, Responses};
+use super::set_solve::{self, SetSolveWork};
 use super::{ContactLaw, LawOutput, check_columns};
 use crate::error::{ContactError, positive};
 use crate::gap::{GapShape, auto_grid};
@@ -91,6 +92,7 @@ struct Reuse {
     responses: Responses,
     model: Option<FrozenSet>,
     delta_g: Vec<f64>,
+    set_work: SetSolveWork,
     stats: ReuseStats,
 }
 
@@ -99,6 +101,9 @@ struct Reuse {
 pub struct ReuseStats {
     /// Full NormCG solves (including the static start).
     pub full_solves: usize,
+    /// Exact solves by active-set updates of the dense factor of the last model's set
+    /// (references.md §C8.4), instead of a NormCG solve.
+    pub factor_solves: usize,
     /// Evaluations answered by the frozen-set model without a solve.
     pub reused: usize,
     /// Largest estimated force error of a reused evaluation, relative to the force of the
@@ -138,6 +143,7 @@ impl BemLaw {
                 responses: Responses::new(&grid, &mut solver)?,
                 model: None,
                 delta_g: Vec::with_capacity(grid.nx),
+                set_work: SetSolveWork::default(),
                 stats: ReuseStats::default(),
             })
         } else {
@@ -322,6 +328,46 @@ impl BemLaw {
         })
     }
 
+    /// With reuse on and a model built with the dense factor, the exact solution at `delta`
+    /// (for the gap in `self.gap`, with the column corrections `column_gap`) by active-set
+    /// updates of the factor from the model's guess of the set
+    /// ([`set_solve`]); `None` otherwise or when that iteration fails (the model is then
+    /// dropped: the factor has left its set).
+    fn factor_solve(
+        &mut self,
+        delta: f64,
+        column_gap: &[f64],
+    ) -> Result<Option<crate::solution::NormalSolution>, ContactError> {
+        let Some(reuse) = self.reuse.as_mut() else {
+            return Ok(None);
+        };
+        let Some(model) = reuse.model.as_ref().filter(|m| m.factored()) else {
+            return Ok(None);
+        };
+        model.predicted_set(
+            &reuse.responses,
+            delta,
+            column_gap,
+            &mut reuse.delta_g,
+            &mut reuse.set_work.in_contact,
+        );
+        let Some(factor) = reuse.responses.factor.as_mut() else {
+            return Ok(None);
+        };
+        let solution = set_solve::solve(
+            factor,
+            &mut self.solver,
+            &self.gap,
+            delta,
+            &mut reuse.set_work,
+        )?;
+        match solution {
+            Some(_) => reuse.stats.factor_solves += 1,
+            None => reuse.model = None,
+        }
+        Ok(solution)
+    }
+
     /// With reuse on, the frozen-set model of the full `solution`; returns its dF/dδ.
     fn rebuild_model(
         &mut self,
@@ -418,10 +464,16 @@ impl ContactLaw for BemLaw {
             sensitivity,
             ..self.options.solver
         };
-        let solution = self
-            .solver
-            .solve(&self.gap, NormalLoad::Approach(delta), &options)?;
-        self.solves += 1;
+        let solution = match self.factor_solve(delta, column_gap)? {
+            Some(solution) => solution,
+            None => {
+                let solution =
+                    self.solver
+                        .solve(&self.gap, NormalLoad::Approach(delta), &options)?;
+                self.solves += 1;
+                solution
+            }
+        };
         let (stiffness, tangent_fresh) = match solution.dfn_dapproach {
             Some(k) if sensitivity => {
                 self.last_stiffness = Some(k);
