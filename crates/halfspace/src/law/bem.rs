@@ -1,7 +1,6 @@
 //! The boundary-element (half-space) contact law: NormCG at prescribed approach.
 
 use super::reuse::{FrozenSet, Responses};
-use super::set_solve::{self, SetSolveWork};
 use super::{ContactLaw, LawOutput, check_columns};
 use crate::error::{ContactError, positive};
 use crate::gap::{GapShape, auto_grid};
@@ -92,7 +91,8 @@ struct Reuse {
     responses: Responses,
     model: Option<FrozenSet>,
     delta_g: Vec<f64>,
-    set_work: SetSolveWork,
+    /// The model's guess of the set (scratch).
+    guess: Vec<bool>,
     stats: ReuseStats,
 }
 
@@ -143,7 +143,7 @@ impl BemLaw {
                 responses: Responses::new(&grid, &mut solver)?,
                 model: None,
                 delta_g: Vec::with_capacity(grid.nx),
-                set_work: SetSolveWork::default(),
+                guess: Vec::new(),
                 stats: ReuseStats::default(),
             })
         } else {
@@ -344,23 +344,15 @@ impl BemLaw {
         let Some(model) = reuse.model.as_ref().filter(|m| m.factored()) else {
             return Ok(None);
         };
-        model.predicted_set(
-            &reuse.responses,
-            delta,
-            column_gap,
-            &mut reuse.delta_g,
-            &mut reuse.set_work.in_contact,
-        );
-        let Some(factor) = reuse.responses.factor.as_mut() else {
-            return Ok(None);
-        };
-        let solution = set_solve::solve(
-            factor,
-            &mut self.solver,
-            &self.gap,
-            delta,
-            &mut reuse.set_work,
-        )?;
+        let delta_g = &mut reuse.delta_g;
+        let responses = &mut reuse.responses;
+        // The model's guess needs the responses read-only; it fills the flags first.
+        let mut guess = std::mem::take(&mut reuse.guess);
+        model.predicted_set(responses, delta, column_gap, delta_g, &mut guess);
+        let solution = responses.solve_set(&mut self.solver, &self.gap, delta, |set| {
+            std::mem::swap(set, &mut guess)
+        })?;
+        reuse.guess = guess;
         match solution {
             Some(_) => reuse.stats.factor_solves += 1,
             None => reuse.model = None,

@@ -38,6 +38,7 @@ use crate::normcg::NormalSolver;
 use crate::solution::NormalSolution;
 
 use super::set_factor::SetFactor;
+use super::set_solve::{self, SetSolveWork};
 
 /// Number of gap shapes in the basis (1, ξ, ξ²).
 const BASIS: usize = 3;
@@ -81,6 +82,11 @@ pub(super) struct Responses {
     /// b_k, then y_k, on the set in the factor's order (a fourth, zero, column: four lanes
     /// of AVX).
     set_block: Vec<[f64; BASIS + 1]>,
+    /// Whether `y` holds the responses on the factor's set already (solved by
+    /// [`Responses::solve_set`] together with the pressure).
+    fresh: bool,
+    /// Scratch of [`Responses::solve_set`].
+    set_work: SetSolveWork,
 }
 
 impl Responses {
@@ -121,11 +127,43 @@ impl Responses {
             self_influence: u[centre],
             factor,
             set_block: Vec::new(),
+            fresh: false,
+            set_work: SetSolveWork::default(),
         })
     }
 }
 
 impl Responses {
+    /// The exact solution at `delta` for the gap `gap` by the factor's active-set rounds
+    /// ([`set_solve`]) from the set `guess` (one flag per element); on success the responses
+    /// y_k on its set come from the same pass over the factor. `None` without a factor or
+    /// when the rounds fail.
+    pub(super) fn solve_set(
+        &mut self,
+        solver: &mut NormalSolver,
+        gap: &[f64],
+        delta: f64,
+        guess: impl FnOnce(&mut Vec<bool>),
+    ) -> Result<Option<NormalSolution>, ContactError> {
+        self.fresh = false;
+        let Some(factor) = self.factor.as_mut() else {
+            return Ok(None);
+        };
+        guess(&mut self.set_work.in_contact);
+        let solution =
+            set_solve::solve(factor, solver, gap, delta, &self.shapes, &mut self.set_work)?;
+        if solution.is_some() {
+            for (k, y) in self.y.iter_mut().enumerate() {
+                y.fill(0.0);
+                for (&e, row) in factor.members().iter().zip(&self.set_work.block) {
+                    y[e] = row[k + 1];
+                }
+            }
+            self.fresh = true;
+        }
+        Ok(solution)
+    }
+
     /// y_k = A_CC⁻¹ b_k for every shape k on the factor's set (zero elsewhere), in one pass
     /// over the factor.
     fn solve_by_factor(&mut self) {
@@ -224,7 +262,8 @@ impl FrozenSet {
         let mut inactive: Vec<usize> = (0..n)
             .filter(|&e| !in_contact[e] && solution.deformed_distance[e].is_finite())
             .collect();
-        inactive.sort_by(|&a, &b| {
+        // A total order (ties by element): the unstable sort gives the stable one's order.
+        inactive.sort_unstable_by(|&a, &b| {
             solution.deformed_distance[a]
                 .total_cmp(&solution.deformed_distance[b])
                 .then(a.cmp(&b))
@@ -236,7 +275,7 @@ impl FrozenSet {
             }
             _ => false,
         };
-        if factored {
+        if factored && !std::mem::take(&mut responses.fresh) {
             responses.solve_by_factor();
         }
         for k in 0..BASIS {

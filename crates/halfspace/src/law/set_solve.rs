@@ -29,18 +29,22 @@ const ENTER_TOL: f64 = 1e-12;
 pub(super) struct SetSolveWork {
     /// The set: the start on entry to [`solve`], then the iterate.
     pub(super) in_contact: Vec<bool>,
-    rhs: Vec<f64>,
-    p: Vec<f64>,
+    /// Per member of the factor: δ − h_e and the shapes b_k(e) on entry to the factor's
+    /// solve, then p_e and y_k,e = (A_CC⁻¹ b_k)_e (lanes 1…3) of the last round.
+    pub(super) block: Vec<[f64; 4]>,
 }
 
 /// The solution at approach `delta` for the undeformed gap `gap` (per element), started from
-/// the set `work.in_contact` (one flag per element); `None` when the iteration does not converge or the set empties (the
+/// the set `work.in_contact` (one flag per element). Each round solves for the pressure and,
+/// in the same pass over the factor, for the responses to the three gap shapes `shapes`
+/// (per element), which `work.block` holds on return (the new model's responses); `None` when the iteration does not converge or the set empties (the
 /// caller solves with NormCG). The factor is left on the solution's set.
 pub(super) fn solve(
     factor: &mut SetFactor,
     solver: &mut NormalSolver,
     gap: &[f64],
     delta: f64,
+    shapes: &[Vec<f64>; 3],
     work: &mut SetSolveWork,
 ) -> Result<Option<NormalSolution>, ContactError> {
     let grid = *solver.grid();
@@ -53,13 +57,16 @@ pub(super) fn solve(
         if members.is_empty() {
             return Ok(None);
         }
-        work.rhs.clear();
-        work.rhs.extend(members.iter().map(|&e| delta - gap[e]));
-        work.p.resize(members.len(), 0.0);
-        factor.solve(&work.rhs, &mut work.p);
+        work.block.clear();
+        work.block.extend(
+            members
+                .iter()
+                .map(|&e| [delta - gap[e], shapes[0][e], shapes[1][e], shapes[2][e]]),
+        );
+        factor.solve_block(&mut work.block);
         let mut dropped = false;
-        for (&e, &p) in members.iter().zip(&work.p) {
-            if p < 0.0 {
+        for (&e, row) in members.iter().zip(&work.block) {
+            if row[0] < 0.0 {
                 work.in_contact[e] = false;
                 dropped = true;
             }
@@ -68,8 +75,8 @@ pub(super) fn solve(
             continue;
         }
         pressure.fill(0.0);
-        for (&e, &p) in members.iter().zip(&work.p) {
-            pressure[e] = p;
+        for (&e, row) in members.iter().zip(&work.block) {
+            pressure[e] = row[0];
         }
         solver.displacement(&pressure, &mut displacement)?;
         let threshold = -ENTER_TOL * delta.abs();
@@ -181,11 +188,16 @@ mod tests {
             max_iter: 2000,
             ..SolverOptions::default()
         };
+        let shapes = [
+            vec![1.0; grid.len()],
+            vec![0.0; grid.len()],
+            vec![0.0; grid.len()],
+        ];
         for delta in [4e-5, 4.4e-5] {
             let exact = solver
                 .solve(&gap, NormalLoad::Approach(delta), &options)
                 .unwrap();
-            let fast = solve(&mut factor, &mut solver, &gap, delta, &mut work)
+            let fast = solve(&mut factor, &mut solver, &gap, delta, &shapes, &mut work)
                 .unwrap()
                 .expect("converges");
             assert_eq!(fast.in_contact, exact.in_contact);
@@ -193,6 +205,22 @@ mod tests {
                 assert!((a - b).abs() <= 1e-9 * exact.max_pressure, "{a} vs {b}");
             }
             assert!((fast.normal_force / exact.normal_force - 1.0).abs() <= 1e-9);
+            // The response to b = 1 (lane 1) is dF/dδ: NormCG's sensitivity solve to 1e-7.
+            let k: f64 = work.block.iter().map(|r| r[1]).sum::<f64>() * grid.element_area();
+            let reference = solver
+                .solve(
+                    &gap,
+                    NormalLoad::Approach(delta),
+                    &SolverOptions {
+                        sensitivity: true,
+                        sensitivity_tol: 1e-12,
+                        ..options
+                    },
+                )
+                .unwrap()
+                .dfn_dapproach
+                .unwrap();
+            assert!((k / reference - 1.0).abs() <= 1e-7, "{k} vs {reference}");
             work.in_contact = fast.in_contact.clone();
         }
     }
