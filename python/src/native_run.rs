@@ -297,6 +297,7 @@ fn run_vehicle_bridge(text: &str, base: &str, stop: &std::sync::atomic::AtomicBo
                 "max_unloading_ratio": monitor.max_unloading_ratio(),
                 "contact_solves": sim.contact_solves().map(|c| serde_json::json!({
                     "full_solves": c.full_solves,
+                    "factor_solves": c.factor_solves,
                     "reused_evaluations": c.reused,
                     "max_reuse_error_estimate": c.max_estimate,
                 })),

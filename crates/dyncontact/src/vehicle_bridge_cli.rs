@@ -71,6 +71,10 @@ pub struct ContactSummary {
     /// BEM contact only: full NormCG solves over all wheels (the static start included).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub full_solves: Option<usize>,
+    /// BEM contact only: exact solves by active-set updates of the dense factor of the last
+    /// contact set instead of NormCG (`[contact] reuse_tol` > 0; references.md §C8.4).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub factor_solves: Option<usize>,
     /// BEM contact only: evaluations answered without a solve (`[contact] reuse_tol`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub reused_evaluations: Option<usize>,
@@ -320,6 +324,7 @@ pub fn simulate_full(
             max_pressure: (model != "rigid").then_some(run.max_pressure()),
             max_unloading_ratio: monitor.max_unloading_ratio(),
             full_solves: solves.map(|s| s.full_solves),
+            factor_solves: solves.map(|s| s.factor_solves),
             reused_evaluations: solves.map(|s| s.reused),
             max_reuse_error_estimate: solves.map(|s| s.max_estimate),
         },
@@ -557,7 +562,7 @@ pub fn bench(default_scenario: &str) -> Result<()> {
         rayon::current_num_threads()
     );
     println!(
-        "{:>13} {:>9} {:>8} {:>11} {:>12} {:>13} {:>13} {:>16} {:>8} {:>11}",
+        "{:>13} {:>9} {:>8} {:>11} {:>12} {:>13} {:>13} {:>16} {:>8} {:>11} {:>13}",
         "solver",
         "reuse_tol",
         "steps",
@@ -567,7 +572,8 @@ pub fn bench(default_scenario: &str) -> Result<()> {
         "iter/step",
         "contact it/step",
         "failed",
-        "full solves"
+        "full solves",
+        "factor solves"
     );
     for (solver, reuse_tol) in [
         ("picard", 0.0),
@@ -592,7 +598,7 @@ pub fn bench(default_scenario: &str) -> Result<()> {
             Ok(o) => {
                 let s = &o.summary;
                 println!(
-                    "{:>13} {:>9.0e} {:>8} {:>11.3} {:>12.1} {:>13.2} {:>13.2} {:>16.2} {:>8} {:>11}",
+                    "{:>13} {:>9.0e} {:>8} {:>11.3} {:>12.1} {:>13.2} {:>13.2} {:>16.2} {:>8} {:>11} {:>13}",
                     solver,
                     reuse_tol,
                     s.solver.steps,
@@ -602,7 +608,8 @@ pub fn bench(default_scenario: &str) -> Result<()> {
                     s.solver.mean_iterations_per_step,
                     s.solver.mean_contact_iterations_per_step,
                     s.solver.failed_steps,
-                    s.contact.full_solves.unwrap_or(0)
+                    s.contact.full_solves.unwrap_or(0),
+                    s.contact.factor_solves.unwrap_or(0)
                 );
             }
             Err(e) => println!("{solver:>13} failed: {}", crate::errors::error_text(&e)),
@@ -658,17 +665,25 @@ fn bench_bem_train(default_scenario: &str) -> Result<()> {
     )?;
     let s = &outcome.summary;
     println!(
-        "{:>8} {:>11} {:>12} {:>13} {:>13} {:>12} {:>10}",
-        "steps", "wall [s]", "µs/step", "sim s/wall s", "iter/step", "full solves", "reused"
+        "{:>8} {:>11} {:>12} {:>13} {:>13} {:>12} {:>13} {:>10}",
+        "steps",
+        "wall [s]",
+        "µs/step",
+        "sim s/wall s",
+        "iter/step",
+        "full solves",
+        "factor solves",
+        "reused"
     );
     println!(
-        "{:>8} {:>11.3} {:>12.1} {:>13.2} {:>13.2} {:>12} {:>10}",
+        "{:>8} {:>11.3} {:>12.1} {:>13.2} {:>13.2} {:>12} {:>13} {:>10}",
         s.solver.steps,
         s.wall_time_s,
         1e6 * s.wall_time_s / s.solver.steps.max(1) as f64,
         s.simulated_time_s / s.wall_time_s,
         s.solver.mean_iterations_per_step,
         s.contact.full_solves.unwrap_or(0),
+        s.contact.factor_solves.unwrap_or(0),
         s.contact.reused_evaluations.unwrap_or(0),
     );
     Ok(())

@@ -109,8 +109,8 @@ fn compare(name: &str, text: &str, reuse_tol: f64, tol: f64) {
     let acceleration = (reused.max_acceleration / exact.max_acceleration - 1.0).abs();
     let s = reused.solves;
     let message = format!(
-        "{name}: force history {force_diff:.3e}, max deflection {deflection:.3e}, max acceleration {acceleration:.3e} (tolerance {tol:e}); estimate {:.3e}; {} full solves ({} without reuse), {} reused",
-        s.max_estimate, s.full_solves, exact.solves.full_solves, s.reused
+        "{name}: force history {force_diff:.3e}, max deflection {deflection:.3e}, max acceleration {acceleration:.3e} (tolerance {tol:e}); estimate {:.3e}; {} full solves ({} without reuse), {} by the factor, {} reused",
+        s.max_estimate, s.full_solves, exact.solves.full_solves, s.factor_solves, s.reused
     );
     eprintln!("{message}");
     assert!(force_diff <= tol, "{message}");

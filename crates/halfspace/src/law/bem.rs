@@ -91,6 +91,8 @@ struct Reuse {
     responses: Responses,
     model: Option<FrozenSet>,
     delta_g: Vec<f64>,
+    /// The model's guess of the set (scratch).
+    guess: Vec<bool>,
     stats: ReuseStats,
 }
 
@@ -99,6 +101,9 @@ struct Reuse {
 pub struct ReuseStats {
     /// Full NormCG solves (including the static start).
     pub full_solves: usize,
+    /// Exact solves by active-set updates of the dense factor of the last model's set
+    /// (references.md §C8.4), instead of a NormCG solve.
+    pub factor_solves: usize,
     /// Evaluations answered by the frozen-set model without a solve.
     pub reused: usize,
     /// Largest estimated force error of a reused evaluation, relative to the force of the
@@ -138,6 +143,7 @@ impl BemLaw {
                 responses: Responses::new(&grid, &mut solver)?,
                 model: None,
                 delta_g: Vec::with_capacity(grid.nx),
+                guess: Vec::new(),
                 stats: ReuseStats::default(),
             })
         } else {
@@ -322,6 +328,38 @@ impl BemLaw {
         })
     }
 
+    /// With reuse on and a model built with the dense factor, the exact solution at `delta`
+    /// (for the gap in `self.gap`, with the column corrections `column_gap`) by active-set
+    /// updates of the factor from the model's guess of the set
+    /// ([`set_solve`]); `None` otherwise or when that iteration fails (the model is then
+    /// dropped: the factor has left its set).
+    fn factor_solve(
+        &mut self,
+        delta: f64,
+        column_gap: &[f64],
+    ) -> Result<Option<crate::solution::NormalSolution>, ContactError> {
+        let Some(reuse) = self.reuse.as_mut() else {
+            return Ok(None);
+        };
+        let Some(model) = reuse.model.as_ref().filter(|m| m.factored()) else {
+            return Ok(None);
+        };
+        let delta_g = &mut reuse.delta_g;
+        let responses = &mut reuse.responses;
+        // The model's guess needs the responses read-only; it fills the flags first.
+        let mut guess = std::mem::take(&mut reuse.guess);
+        model.predicted_set(responses, delta, column_gap, delta_g, &mut guess);
+        let solution = responses.solve_set(&mut self.solver, &self.gap, delta, |set| {
+            std::mem::swap(set, &mut guess)
+        })?;
+        reuse.guess = guess;
+        match solution {
+            Some(_) => reuse.stats.factor_solves += 1,
+            None => reuse.model = None,
+        }
+        Ok(solution)
+    }
+
     /// With reuse on, the frozen-set model of the full `solution`; returns its dF/dδ.
     fn rebuild_model(
         &mut self,
@@ -418,10 +456,16 @@ impl ContactLaw for BemLaw {
             sensitivity,
             ..self.options.solver
         };
-        let solution = self
-            .solver
-            .solve(&self.gap, NormalLoad::Approach(delta), &options)?;
-        self.solves += 1;
+        let solution = match self.factor_solve(delta, column_gap)? {
+            Some(solution) => solution,
+            None => {
+                let solution =
+                    self.solver
+                        .solve(&self.gap, NormalLoad::Approach(delta), &options)?;
+                self.solves += 1;
+                solution
+            }
+        };
         let (stiffness, tangent_fresh) = match solution.dfn_dapproach {
             Some(k) if sensitivity => {
                 self.last_stiffness = Some(k);

@@ -56,6 +56,8 @@ mod hertz;
 mod hertz_line;
 mod reuse;
 mod rigid;
+mod set_factor;
+mod set_solve;
 
 pub use bem::{BemLaw, BemOptions, ReuseStats, TangentPolicy};
 pub use damped::{Damped, DampingModel};

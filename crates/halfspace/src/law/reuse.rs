@@ -37,6 +37,9 @@ use crate::grid::Grid;
 use crate::normcg::NormalSolver;
 use crate::solution::NormalSolution;
 
+use super::set_factor::SetFactor;
+use super::set_solve::{self, SetSolveWork};
+
 /// Number of gap shapes in the basis (1, ξ, ξ²).
 const BASIS: usize = 3;
 
@@ -47,6 +50,19 @@ const LEAVING_FACTOR: f64 = 2.0;
 
 /// Relative residual of the CG solves of the responses y_k.
 const RESPONSE_TOL: f64 = 1e-5;
+
+/// Relative error of the responses solved with the dense factor of A_CC (round-off of
+/// triangular solves of order ≤ [`MAX_FACTOR_SET`] with condition number ≤ 1e3, with a
+/// margin of 1e2).
+const FACTOR_TOL: f64 = 1e-10;
+
+/// Grids of at most this many elements keep the dense factor of A_CC ([`SetFactor`]; 8 MB at
+/// most); larger grids solve the responses by CG.
+const MAX_FACTOR_GRID: usize = 1024;
+
+/// Contact sets larger than this solve the responses by CG (the factor's memory and the cost
+/// of a new factorization, m³/3).
+const MAX_FACTOR_SET: usize = 1024;
 
 /// The responses y_k kept between models (warm starts of the next model's solves).
 #[derive(Debug)]
@@ -61,6 +77,16 @@ pub(super) struct Responses {
     scratch: Vec<f64>,
     /// The self-influence A_ee \[m/Pa\] (equal for every element of a uniform grid).
     self_influence: f64,
+    /// The dense factor of A_CC kept across set changes (grids up to [`MAX_FACTOR_GRID`]).
+    pub(super) factor: Option<SetFactor>,
+    /// b_k, then y_k, on the set in the factor's order (a fourth, zero, column: four lanes
+    /// of AVX).
+    set_block: Vec<[f64; BASIS + 1]>,
+    /// Whether `y` holds the responses on the factor's set already (solved by
+    /// [`Responses::solve_set`] together with the pressure).
+    fresh: bool,
+    /// Scratch of [`Responses::solve_set`].
+    set_work: SetSolveWork,
 }
 
 impl Responses {
@@ -83,13 +109,79 @@ impl Responses {
         unit[centre] = 1.0;
         let mut u = vec![0.0; n];
         solver.displacement(&unit, &mut u)?;
+        let factor = if n <= MAX_FACTOR_GRID {
+            // K(dx, dy) = the displacement of a unit pressure on element 0 at offset (dx, dy).
+            let mut unit = vec![0.0; n];
+            unit[0] = 1.0;
+            let mut kernel = vec![0.0; n];
+            solver.displacement(&unit, &mut kernel)?;
+            Some(SetFactor::new(kernel, grid.nx))
+        } else {
+            None
+        };
         Ok(Responses {
             shapes,
             column_shapes,
             y: std::array::from_fn(|_| vec![0.0; n]),
             scratch: u.clone(),
             self_influence: u[centre],
+            factor,
+            set_block: Vec::new(),
+            fresh: false,
+            set_work: SetSolveWork::default(),
         })
+    }
+}
+
+impl Responses {
+    /// The exact solution at `delta` for the gap `gap` by the factor's active-set rounds
+    /// ([`set_solve`]) from the set `guess` (one flag per element); on success the responses
+    /// y_k on its set come from the same pass over the factor. `None` without a factor or
+    /// when the rounds fail.
+    pub(super) fn solve_set(
+        &mut self,
+        solver: &mut NormalSolver,
+        gap: &[f64],
+        delta: f64,
+        guess: impl FnOnce(&mut Vec<bool>),
+    ) -> Result<Option<NormalSolution>, ContactError> {
+        self.fresh = false;
+        let Some(factor) = self.factor.as_mut() else {
+            return Ok(None);
+        };
+        guess(&mut self.set_work.in_contact);
+        let solution =
+            set_solve::solve(factor, solver, gap, delta, &self.shapes, &mut self.set_work)?;
+        if solution.is_some() {
+            for (k, y) in self.y.iter_mut().enumerate() {
+                y.fill(0.0);
+                for (&e, row) in factor.members().iter().zip(&self.set_work.block) {
+                    y[e] = row[k + 1];
+                }
+            }
+            self.fresh = true;
+        }
+        Ok(solution)
+    }
+
+    /// y_k = A_CC⁻¹ b_k for every shape k on the factor's set (zero elsewhere), in one pass
+    /// over the factor.
+    fn solve_by_factor(&mut self) {
+        let factor = self.factor.as_ref().expect("a factor");
+        let members = factor.members();
+        self.set_block.clear();
+        self.set_block.extend(
+            members
+                .iter()
+                .map(|&e| std::array::from_fn(|k| if k < BASIS { self.shapes[k][e] } else { 0.0 })),
+        );
+        factor.solve_block(&mut self.set_block);
+        for (k, y) in self.y.iter_mut().enumerate() {
+            y.fill(0.0);
+            for (&e, row) in members.iter().zip(&self.set_block) {
+                y[e] = row[k];
+            }
+        }
     }
 }
 
@@ -105,8 +197,12 @@ pub(super) struct FrozenSet {
     pressure: Vec<f64>,
     /// y_k on C (`active` order).
     y: [Vec<f64>; BASIS],
-    /// The grid columns of the elements off C, by increasing deformed distance.
+    /// The elements off C, by increasing deformed distance.
+    inactive: Vec<u32>,
+    /// Their grid columns.
     inactive_column: Vec<u32>,
+    /// Whether the responses came from the dense factor (which then holds A_CC of C).
+    factored: bool,
     /// Their deformed distances e_r (increasing).
     distance: Vec<f64>,
     /// A y_k off C (`inactive` order).
@@ -124,6 +220,8 @@ pub(super) struct FrozenSet {
     patch: (f64, f64),
     /// Σ_C ΔA |x_e e_e|: the force error of the reference solve \[N\].
     reference_error: f64,
+    /// Relative error of the responses ([`RESPONSE_TOL`] by CG, [`FACTOR_TOL`] by the factor).
+    response_tol: f64,
 }
 
 /// A prediction of the model.
@@ -164,20 +262,35 @@ impl FrozenSet {
         let mut inactive: Vec<usize> = (0..n)
             .filter(|&e| !in_contact[e] && solution.deformed_distance[e].is_finite())
             .collect();
-        inactive.sort_by(|&a, &b| {
+        // A total order (ties by element): the unstable sort gives the stable one's order.
+        inactive.sort_unstable_by(|&a, &b| {
             solution.deformed_distance[a]
                 .total_cmp(&solution.deformed_distance[b])
                 .then(a.cmp(&b))
         });
+        let factored = match responses.factor.as_mut() {
+            Some(factor) if active.len() <= MAX_FACTOR_SET => {
+                factor.sync(in_contact)?;
+                true
+            }
+            _ => false,
+        };
+        if factored && !std::mem::take(&mut responses.fresh) {
+            responses.solve_by_factor();
+        }
         for k in 0..BASIS {
-            solver.solve_on_set(
-                in_contact,
-                &responses.shapes[k],
-                &mut responses.y[k],
-                &mut responses.scratch,
-                RESPONSE_TOL,
-                max_iter,
-            )?;
+            if factored {
+                solver.displacement(&responses.y[k], &mut responses.scratch)?;
+            } else {
+                solver.solve_on_set(
+                    in_contact,
+                    &responses.shapes[k],
+                    &mut responses.y[k],
+                    &mut responses.scratch,
+                    RESPONSE_TOL,
+                    max_iter,
+                )?;
+            }
             response_u[k] = inactive.iter().map(|&e| responses.scratch[e]).collect();
             for &e in &active {
                 column_response[k][e % nx] += area * responses.y[k][e];
@@ -228,6 +341,8 @@ impl FrozenSet {
                 .map(|&e| solution.deformed_distance[e])
                 .collect(),
             inactive_column: inactive.iter().map(|&e| (e % nx) as u32).collect(),
+            inactive: inactive.iter().map(|&e| e as u32).collect(),
+            factored,
             response_u,
             response_u_max,
             column_response,
@@ -237,7 +352,14 @@ impl FrozenSet {
             self_influence: responses.self_influence,
             patch: (2.0 * a, 2.0 * b),
             reference_error,
+            response_tol: if factored { FACTOR_TOL } else { RESPONSE_TOL },
         }))
+    }
+
+    /// Whether the model's responses came from the dense factor, which then holds A_CC of
+    /// the model's set.
+    pub(super) fn factored(&self) -> bool {
+        self.factored
     }
 
     /// The force F_r of the full solve the model was built from \[N\].
@@ -258,24 +380,7 @@ impl FrozenSet {
         delta_g: &mut Vec<f64>,
     ) -> Option<Prediction> {
         let nx = self.nx;
-        delta_g.clear();
-        let dd = delta - self.delta;
-        for i in 0..nx {
-            let c = column_gap.get(i).copied().unwrap_or(0.0);
-            delta_g.push(dd - (c - self.column_gap[i]));
-        }
-        // Weighted least-squares fit of Δg on the basis.
-        let mut rhs = [0.0; BASIS];
-        for (i, &g) in delta_g.iter().enumerate() {
-            let wgt = self.column_response[0][i].abs();
-            for (k, r) in rhs.iter_mut().enumerate() {
-                *r += wgt * responses.column_shapes[k][i] * g;
-            }
-        }
-        let mut a = [0.0; BASIS];
-        for (k, ak) in a.iter_mut().enumerate() {
-            *ak = (0..BASIS).map(|l| self.gram_inverse[k][l] * rhs[l]).sum();
-        }
+        let a = self.fit(responses, delta, column_gap, delta_g);
         // Entering elements refuse the prediction. The predicted distance of an element off
         // C is e_r − Δg_i + Σ_k a_k (A y_k)_e ≥ e_r − max_i |Δg_i| − Σ_k |a_k| max |A y_k|:
         // the elements are sorted by e_r, so the check stops at the first one beyond that
@@ -341,8 +446,63 @@ impl FrozenSet {
             energy,
             max_pressure,
             patch: self.patch,
-            estimate: leaving + remainder + self.reference_error + RESPONSE_TOL * change_size,
+            estimate: leaving + remainder + self.reference_error + self.response_tol * change_size,
         })
+    }
+
+    /// Δg_i per column into `delta_g` and its X-weighted least-squares fit a_k on the basis.
+    fn fit(
+        &self,
+        responses: &Responses,
+        delta: f64,
+        column_gap: &[f64],
+        delta_g: &mut Vec<f64>,
+    ) -> [f64; BASIS] {
+        delta_g.clear();
+        let dd = delta - self.delta;
+        for i in 0..self.nx {
+            let c = column_gap.get(i).copied().unwrap_or(0.0);
+            delta_g.push(dd - (c - self.column_gap[i]));
+        }
+        let mut rhs = [0.0; BASIS];
+        for (i, &g) in delta_g.iter().enumerate() {
+            let wgt = self.column_response[0][i].abs();
+            for (k, r) in rhs.iter_mut().enumerate() {
+                *r += wgt * responses.column_shapes[k][i] * g;
+            }
+        }
+        std::array::from_fn(|k| (0..BASIS).map(|l| self.gram_inverse[k][l] * rhs[l]).sum())
+    }
+
+    /// The model's guess of the contact set at `delta` with the column corrections
+    /// `column_gap` into `in_contact` (one flag per element): the elements of C whose
+    /// predicted pressure p_r + Σ a_k y_k stays ≥ 0 and the elements off C whose predicted
+    /// distance e_r − Δg_i + Σ a_k (A y_k) is negative (the part of Δg outside the basis is
+    /// left out: a guess, the start of the factor's active-set solve).
+    pub(super) fn predicted_set(
+        &self,
+        responses: &Responses,
+        delta: f64,
+        column_gap: &[f64],
+        delta_g: &mut Vec<f64>,
+        in_contact: &mut Vec<bool>,
+    ) {
+        let a = self.fit(responses, delta, column_gap, delta_g);
+        in_contact.clear();
+        in_contact.resize(responses.shapes[0].len(), false);
+        for (j, &e) in self.active.iter().enumerate() {
+            let p: f64 = self.pressure[j] + (0..BASIS).map(|k| a[k] * self.y[k][j]).sum::<f64>();
+            in_contact[e] = p >= 0.0;
+        }
+        for (j, &d) in self.distance.iter().enumerate() {
+            let mut predicted = d - delta_g[self.inactive_column[j] as usize];
+            for (k, ak) in a.iter().enumerate() {
+                predicted += ak * self.response_u[k][j];
+            }
+            if predicted < 0.0 {
+                in_contact[self.inactive[j] as usize] = true;
+            }
+        }
     }
 
     /// dF/dδ of the frozen set, Σ_i X_i \[N/m\].

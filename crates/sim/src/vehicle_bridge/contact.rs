@@ -206,6 +206,9 @@ pub(super) fn wheel_error(wheel: usize) -> impl Fn(ContactError) -> VehicleBridg
 pub struct ContactSolves {
     /// Full NormCG solves over all wheels (the static start included).
     pub full_solves: usize,
+    /// Exact solves by active-set updates of the dense factor of the last contact set
+    /// instead of a NormCG solve (references.md §C8.4; `reuse_tol` > 0).
+    pub factor_solves: usize,
     /// Evaluations answered by the frozen-set model without a solve.
     pub reused: usize,
     /// Largest estimated force error of a reused evaluation relative to the force of its
@@ -222,6 +225,7 @@ impl super::Simulation {
             if let Some(s) = contact_law_stats(contact) {
                 let t = total.get_or_insert_with(ContactSolves::default);
                 t.full_solves += s.full_solves;
+                t.factor_solves += s.factor_solves;
                 t.reused += s.reused;
                 t.max_estimate = t.max_estimate.max(s.max_estimate);
             }
