@@ -59,6 +59,18 @@ struct DenseBlock {
     sparse: Option<SparseRows>,
 }
 
+impl DenseBlock {
+    /// The block's entries of `x` gathered into the front of `xs` (returned, length m), so
+    /// that each row is a dot product of two slices.
+    fn gather<'a>(&self, x: &[f64], xs: &'a mut [f64]) -> &'a mut [f64] {
+        let xs = &mut xs[..self.indices.len()];
+        for (v, &i) in xs.iter_mut().zip(&self.indices) {
+            *v = x[i];
+        }
+        xs
+    }
+}
+
 /// The inverse of the row-major m × m `entries` by Gauss–Jordan elimination with partial
 /// pivoting; `None` if it is singular or not finite.
 pub(super) fn gauss_jordan_inverse(entries: &[f64], m: usize) -> Option<Vec<f64>> {
@@ -229,6 +241,15 @@ impl BlockDiagonal {
         self.held.get(d).copied().unwrap_or(false)
     }
 
+    /// The dense blocks taking part in products and solves (a held one is skipped: its rows
+    /// are left as they were; module `resting`), with their positions.
+    fn live_dense(&self) -> impl Iterator<Item = (usize, &DenseBlock)> {
+        self.dense
+            .iter()
+            .enumerate()
+            .filter(|&(d, _)| !self.is_held(d))
+    }
+
     /// The matrix's version: changes at every modification (see the field).
     pub fn version(&self) -> u64 {
         self.version
@@ -289,15 +310,9 @@ impl BlockDiagonal {
         // The block's entries of x are gathered once, so that each row is a dot product of two
         // slices (the same products summed in the same order as entry by entry).
         self.with_scratch(|xs, buf| {
-            for (d, b) in self.dense.iter().enumerate() {
-                if self.is_held(d) {
-                    continue;
-                }
+            for (d, b) in self.live_dense() {
                 let m = b.indices.len();
-                let xs = &mut xs[..m];
-                for (v, &i) in xs.iter_mut().zip(&b.indices) {
-                    *v = x[i];
-                }
+                let xs = b.gather(x, xs);
                 let banded = match which {
                     DensePart::Inverse => replaced(d).or(b.banded.as_ref()),
                     DensePart::AbsInverse => None,
@@ -518,15 +533,9 @@ impl BlockDiagonal {
     /// `|A⁻¹| e` at the wheels only, a third of an articulated rake's rows.
     pub fn solve_abs_at(&self, x: &mut [f64], rows: &[usize]) {
         self.with_scratch(|xs, out| {
-            for (d, b) in self.dense.iter().enumerate() {
-                if self.is_held(d) {
-                    continue;
-                }
+            for (d, b) in self.live_dense() {
                 let m = b.indices.len();
-                let xs = &mut xs[..m];
-                for (v, &i) in xs.iter_mut().zip(&b.indices) {
-                    *v = x[i];
-                }
+                let xs = b.gather(x, xs);
                 // The wanted rows of this block, computed from its entries of x before any
                 // is overwritten.
                 let mut count = 0;
@@ -564,15 +573,9 @@ impl BlockDiagonal {
     /// `y = A x` (held dense blocks: y not written there).
     pub fn mul(&self, x: &[f64], y: &mut [f64]) {
         self.with_scratch(|xs, out| {
-            for (d, b) in self.dense.iter().enumerate() {
-                if self.is_held(d) {
-                    continue;
-                }
+            for (_, b) in self.live_dense() {
                 let m = b.indices.len();
-                let xs = &mut xs[..m];
-                for (v, &i) in xs.iter_mut().zip(&b.indices) {
-                    *v = x[i];
-                }
+                let xs = b.gather(x, xs);
                 match &b.sparse {
                     Some(rows) => rows.times(xs, &mut out[..m]),
                     None => rows_times(&b.entries, xs, &mut out[..m], false),
