@@ -45,7 +45,8 @@ pub enum VehicleBridgeError {
     SingularStepMatrix { dof: usize, reason: String },
     /// The coupling iteration of a step failed even after step reduction.
     #[error(
-        "coupling ({solver}) failed at t = {t:.6} s with step {dt:e} s after {halvings} step halvings: {reason} (last force change {change:e} N after {iterations} iterations)"
+        "coupling ({solver}) failed at t = {t:.6} s with step {dt:e} s after {halvings} step halvings: {reason} ({})",
+        iteration_note(*change, *iterations)
     )]
     CouplingFailed {
         solver: &'static str,
@@ -56,6 +57,16 @@ pub enum VehicleBridgeError {
         change: f64,
         reason: String,
     },
+}
+
+/// The iterations of a failed coupling solve, with the last force change where the solver
+/// measures one (the track's patch and rigid solvers do not: no "NaN N" in the message).
+fn iteration_note(change: f64, iterations: usize) -> String {
+    if change.is_finite() {
+        format!("last force change {change:e} N after {iterations} iterations")
+    } else {
+        format!("after {iterations} iterations")
+    }
 }
 
 /// The error of an out-of-range scenario key `name` with its `value` and the allowed range.
@@ -83,5 +94,37 @@ pub(super) fn check_non_negative(name: String, v: f64) -> Result<(), VehicleBrid
         Ok(())
     } else {
         Err(invalid(name, v, "must be finite and >= 0"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::VehicleBridgeError;
+
+    fn failed(change: f64) -> String {
+        VehicleBridgeError::CouplingFailed {
+            solver: "track_patch_newton",
+            t: 0.05,
+            dt: 1e-4,
+            halvings: 0,
+            iterations: 2,
+            change,
+            reason: "no decrease of the residual".into(),
+        }
+        .to_string()
+    }
+
+    /// A solver without a force change (the track's patch and rigid solvers) prints none, and
+    /// never "NaN N"; a measured change is printed as before.
+    #[test]
+    fn coupling_failure_names_a_measured_change_only() {
+        let without = failed(f64::NAN);
+        assert!(!without.contains("NaN"), "{without}");
+        assert!(without.ends_with("(after 2 iterations)"), "{without}");
+        let with = failed(8.08e-2);
+        assert!(
+            with.ends_with("(last force change 8.08e-2 N after 2 iterations)"),
+            "{with}"
+        );
     }
 }

@@ -402,6 +402,8 @@ impl PatchContacts {
                 return Ok(it - 1);
             }
             self.directions();
+            // The residual was evaluated with the shares before this adoption.
+            let stale = moved > 0.0;
             // (I + diag(k_c) S) ΔF = −G.
             {
                 let mut m = nw.lu.matrix_mut();
@@ -441,6 +443,14 @@ impl PatchContacts {
                     break;
                 }
                 scale *= 0.5;
+            }
+            if !accepted && stale {
+                // The adopted shares moved the column gaps and the load directions, so the
+                // residual the line search compared with belongs to the old shares: evaluate
+                // it again at the same forces with the new ones and take the next iteration
+                // from there (its adoption finds the shares of this evaluation).
+                residual = self.evaluate(contacts, forces, &mut nw.residual, outputs)?;
+                continue;
             }
             if !accepted {
                 // No decrease in 30 halvings: at the floating-point floor of the residual.
