@@ -45,6 +45,7 @@
 //! the static rail's slope under it, c u'(x_k).
 
 mod constraint;
+mod factor;
 mod moving;
 mod patch;
 mod step;
@@ -61,6 +62,9 @@ use halfspace::law::{ContactModel as LawModel, LawOutput};
 
 use super::error::{invalid, invalid_text};
 use super::{ContactModel, CouplingSolver, Integrator, Simulation, VehicleBridgeError};
+#[cfg(test)]
+use factor::step_coefficients;
+use factor::{factorise, nested_dissection};
 
 /// The track of a vehicle–bridge scenario (`[track]`, parsed by `config::track`).
 #[derive(Debug, Clone, PartialEq)]
@@ -127,6 +131,11 @@ pub(super) struct TrackLayer {
     /// The step matrix's factor and the Δt it was built for.
     factor: SparseCholesky,
     dt: f64,
+    /// The step matrix's terms (M, C, K entries) and elimination order, to factorise it for
+    /// the halved Δt of a failed step, and the factors built so far for other Δt.
+    terms: [Vec<(usize, usize, f64)>; 3],
+    ordering: Vec<usize>,
+    other_factors: Vec<(f64, SparseCholesky)>,
     q: Vec<f64>,
     v: Vec<f64>,
     a: Vec<f64>,
@@ -173,18 +182,6 @@ fn alpha_parameters(integrator: &Integrator) -> Result<AlphaParameters, VehicleB
 /// displacement-level constraint needs it (module [`constraint`]).
 fn dissipative(p: &AlphaParameters) -> bool {
     p.gamma > 0.5 + 1e-9
-}
-
-/// The coupled system's step-matrix coefficients (c_M, c_C, c_K) for Δt (the step equation
-/// of [`integrate::structural::StepEquation`]).
-fn step_coefficients(p: &AlphaParameters, dt: f64) -> (f64, f64, f64) {
-    let c_qa = p.beta * dt * dt;
-    let c_va = p.gamma * dt;
-    (
-        (1.0 - p.alpha_m) / c_qa,
-        (1.0 - p.alpha_f) * c_va / c_qa,
-        1.0 - p.alpha_f,
-    )
 }
 
 /// Merged (row, column, value) entries in compressed-row form.
@@ -548,6 +545,9 @@ impl TrackLayer {
             gravity,
             factor,
             dt,
+            terms: [mass, damping, stiffness],
+            ordering,
+            other_factors: Vec::new(),
             forces: sim.static_loads.clone(),
             points,
             q_pred: vec![0.0; n],
@@ -584,74 +584,6 @@ impl TrackLayer {
             .rail_point(x + self.track.layout().approach())
             .map_err(track_key)
     }
-}
-
-/// The step matrix c_M M + c_C C + c_K K of Δt, factorised.
-fn factorise(
-    n: usize,
-    mass: &[(usize, usize, f64)],
-    damping: &[(usize, usize, f64)],
-    stiffness: &[(usize, usize, f64)],
-    params: &AlphaParameters,
-    dt: f64,
-    ordering: &[usize],
-) -> Result<SparseCholesky, VehicleBridgeError> {
-    let (cm, cc, ck) = step_coefficients(params, dt);
-    let mut all: Vec<(usize, usize, f64)> =
-        Vec::with_capacity(mass.len() + damping.len() + stiffness.len());
-    all.extend(mass.iter().map(|&(i, j, v)| (i, j, cm * v)));
-    all.extend(damping.iter().map(|&(i, j, v)| (i, j, cc * v)));
-    all.extend(stiffness.iter().map(|&(i, j, v)| (i, j, ck * v)));
-    SparseCholesky::factorise_entries(n, &all, Some(ordering), "track step matrix").map_err(|e| {
-        VehicleBridgeError::SingularStepMatrix {
-            dof: 0,
-            reason: e.to_string(),
-        }
-    })
-}
-
-/// The elimination order of the coupled system: the vehicle DOFs first (they couple to the
-/// track only through the contact), then the track by nested dissection along the rail (a
-/// rail node's w, θ separate the track before it from the track after it; the chain masses
-/// of a separating node's sleeper go just before it), the bridge modes last (they couple to
-/// every sleeper on the span). The elimination tree is then shallow, so L⁻¹P v of a contact
-/// vector is non-zero only on the path from the wheel's element to the root.
-fn nested_dissection(track: &Track, n: usize) -> Vec<usize> {
-    let n_track = track.n_track_dofs();
-    let nodes = track.node_positions().len();
-    let group = |k: usize| -> std::ops::Range<usize> {
-        let end = if k + 1 < nodes {
-            track.rail_dof(k + 1)
-        } else {
-            n_track
-        };
-        track.rail_dof(k)..end
-    };
-    let mut order: Vec<usize> = (n_track + track.n_modes()..n).collect();
-    // Recursive bisection of the node range [lo, hi) (depth log₂ of the node count).
-    fn dissect(
-        lo: usize,
-        hi: usize,
-        group: &dyn Fn(usize) -> std::ops::Range<usize>,
-        order: &mut Vec<usize>,
-    ) {
-        if hi - lo <= 2 {
-            for k in lo..hi {
-                order.extend(group(k));
-            }
-            return;
-        }
-        let mid = (lo + hi) / 2;
-        dissect(lo, mid, group, order);
-        dissect(mid + 1, hi, group, order);
-        // The separator: the sleeper's masses (after w, θ in the numbering), then w, θ.
-        let g = group(mid);
-        order.extend(g.start + 2..g.end);
-        order.extend(g.start..g.start + 2);
-    }
-    dissect(0, nodes, &group, &mut order);
-    order.extend(n_track..n_track + track.n_modes());
-    order
 }
 
 /// The failure of a contact solve `solver` after `iterations` (the step fills in its time).

@@ -6,7 +6,6 @@ use integrate::DenseLu;
 use integrate::structural::sparse::sparse_mul_add;
 
 use super::super::contact::wheel_error;
-use super::super::error::invalid;
 use super::super::{Simulation, VehicleBridgeError, WheelSample};
 use super::TrackLayer;
 use super::moving::add_moving_loads;
@@ -185,20 +184,53 @@ impl Simulation {
     /// One step of Δt of the track-coupled system (module documentation of [`super`]).
     pub(in super::super) fn track_step(&mut self, dt: f64) -> Result<(), VehicleBridgeError> {
         let mut layer = self.track.take().expect("called with a track");
-        let result = self.track_step_with(&mut layer, dt);
+        let result = self.track_advance(&mut layer, dt, 0);
         self.track = Some(layer);
         result?;
         self.track_samples()
     }
 
-    fn track_step_with(&mut self, l: &mut TrackLayer, dt: f64) -> Result<(), VehicleBridgeError> {
-        if dt != l.dt {
-            return Err(invalid(
-                "integrator.dt",
-                dt,
-                "the track's step matrix is factorised for the scenario's dt only",
-            ));
+    /// Advances by `dt`, retrying an attempt whose contact solve failed as two half steps up
+    /// to `coupling.max_halvings` times (as without the track, module `step`). A failed
+    /// attempt leaves the state of the step before it: the track's state is written only
+    /// after the contact solve.
+    fn track_advance(
+        &mut self,
+        l: &mut TrackLayer,
+        dt: f64,
+        depth: usize,
+    ) -> Result<(), VehicleBridgeError> {
+        l.use_step_size(dt)?;
+        match self.track_step_with(l, dt) {
+            Err(VehicleBridgeError::CouplingFailed {
+                solver,
+                t,
+                iterations,
+                change,
+                reason,
+                ..
+            }) => {
+                self.stats.failed_steps += 1;
+                if depth >= self.scenario.coupling.max_halvings {
+                    return Err(VehicleBridgeError::CouplingFailed {
+                        solver,
+                        t,
+                        dt,
+                        halvings: depth,
+                        iterations,
+                        change,
+                        reason,
+                    });
+                }
+                self.track_advance(l, 0.5 * dt, depth + 1)?;
+                self.track_advance(l, 0.5 * dt, depth + 1)
+            }
+            other => other,
         }
+    }
+
+    fn track_step_with(&mut self, l: &mut TrackLayer, dt: f64) -> Result<(), VehicleBridgeError> {
+        debug_assert_eq!(dt, l.dt, "the factor of this dt is in place");
         let p = l.params;
         let (beta, gamma, am, af) = (p.beta, p.gamma, p.alpha_m, p.alpha_f);
         let s = 1.0 - af;
