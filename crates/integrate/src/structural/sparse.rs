@@ -5,6 +5,8 @@
 //! The storage is faer's [`SparseRowMat`]; the product is a plain row loop (no allocation,
 //! no dispatch, which matters at these sizes).
 
+use std::ops::Range;
+
 use faer::MatRef;
 use faer::sparse::{SparseRowMat, SparseRowMatRef, Triplet};
 
@@ -30,17 +32,48 @@ pub fn sparse_from_dense(a: MatRef<'_, f64>) -> SparseMatrix {
 
 /// `out += s · A x` for a compressed-row `A` (`x` of length ncols, `out` of length nrows).
 pub fn sparse_mul_add(a: SparseRowMatRef<'_, usize, f64>, s: f64, x: &[f64], out: &mut [f64]) {
+    let n = out.len();
+    sparse_mul_add_rows(a, s, x, out, std::iter::once(0..n));
+}
+
+/// `out_i += s · (A x)_i` for the rows `i` in `rows` only (the other entries of `out` are left
+/// as they are): the same operations per row as [`sparse_mul_add`].
+pub fn sparse_mul_add_rows(
+    a: SparseRowMatRef<'_, usize, f64>,
+    s: f64,
+    x: &[f64],
+    out: &mut [f64],
+    rows: impl Iterator<Item = Range<usize>>,
+) {
     let symbolic = a.symbolic();
     let (row_ptr, col_idx, val) = (symbolic.row_ptr(), symbolic.col_idx(), a.val());
-    for (i, o) in out.iter_mut().enumerate() {
-        let (start, end) = (row_ptr[i], row_ptr[i + 1]);
-        let ax: f64 = col_idx[start..end]
-            .iter()
-            .zip(&val[start..end])
-            .map(|(&j, v)| v * x[j])
-            .sum();
-        *o += s * ax;
+    for range in rows {
+        let start = range.start;
+        for (i, o) in out[range].iter_mut().enumerate() {
+            let (begin, end) = (row_ptr[start + i], row_ptr[start + i + 1]);
+            let ax: f64 = col_idx[begin..end]
+                .iter()
+                .zip(&val[begin..end])
+                .map(|(&j, v)| v * x[j])
+                .sum();
+            *o += s * ax;
+        }
     }
+}
+
+/// The rows `0..n` outside the sorted, disjoint ranges `frozen`, as ranges in increasing order
+/// (the rows a step evaluates; `StructuralStepper::freeze`).
+pub fn rows_outside(n: usize, frozen: &[Range<usize>]) -> impl Iterator<Item = Range<usize>> + '_ {
+    let mut start = 0;
+    frozen
+        .iter()
+        .map(|f| (f.start, f.end))
+        .chain(std::iter::once((n, n)))
+        .filter_map(move |(f0, f1)| {
+            let range = start..f0;
+            start = f1;
+            (!range.is_empty()).then_some(range)
+        })
 }
 
 /// `out = A x` for a compressed-row `A`.
@@ -75,5 +108,23 @@ mod tests {
             let dense: f64 = (0..n).map(|j| a[(i, j)] * x[j]).sum();
             assert!((y[i] - (0.5 - 2.0 * dense)).abs() <= 1e-14 * (1.0 + dense.abs()));
         }
+        // Restricted to the rows outside {1, 2} and {5}: those rows equal the full product
+        // bit for bit, the others are untouched.
+        let frozen = [1..3, 5..6];
+        let rows: Vec<_> = rows_outside(n, &frozen).collect();
+        assert_eq!(rows, vec![0..1, 3..5, 6..7]);
+        let mut z = vec![0.5; n];
+        sparse_mul_add_rows(sparse.as_ref(), -2.0, &x, &mut z, rows.into_iter());
+        for i in 0..n {
+            let expected = if frozen.iter().any(|f| f.contains(&i)) {
+                0.5
+            } else {
+                y[i]
+            };
+            assert_eq!(z[i].to_bits(), expected.to_bits(), "row {i}");
+        }
+        let everything = [Range { start: 0, end: 4 }];
+        assert_eq!(rows_outside(4, &everything).count(), 0);
+        assert_eq!(rows_outside(4, &[]).collect::<Vec<_>>(), vec![0..4]);
     }
 }

@@ -3,7 +3,9 @@
 use faer::sparse::SparseRowMatRef;
 use faer::{MatMut, MatRef};
 
-use super::sparse::sparse_mul_add;
+use std::ops::Range;
+
+use super::sparse::{rows_outside, sparse_mul_add_rows};
 
 use crate::IntegrateError;
 
@@ -53,6 +55,10 @@ pub struct StepEquation {
     pub damping_coefficient: f64,
     /// `c_K = 1 − α_f`.
     pub stiffness_coefficient: f64,
+    /// The DOFs frozen at rest ([`StructuralStepper::freeze`](super::StructuralStepper::freeze)),
+    /// as sorted, disjoint ranges (empty: none): `q̃ = q_n`, `ṽ = 0`, and their rows of `h` and
+    /// of [`effective_load_sparse`](Self::effective_load_sparse) are not evaluated (zero).
+    pub frozen_rows: Vec<Range<usize>>,
 }
 
 impl StepEquation {
@@ -197,7 +203,8 @@ impl StepEquation {
     }
 
     /// [`effective_load`](Self::effective_load) with compressed-row `M` and `C`
-    /// ([`super::sparse`]): the same formula in O(nnz).
+    /// ([`super::sparse`]): the same formula in O(nnz), over the rows not in
+    /// [`frozen_rows`](Self::frozen_rows) (those are zero).
     pub fn effective_load_sparse(
         &self,
         mass: SparseRowMatRef<'_, usize, f64>,
@@ -216,13 +223,23 @@ impl StepEquation {
         }
         self.check_len("f_ext", f_ext.len())?;
         self.check_len("out", out.len())?;
-        for ((r, f), h) in out.iter_mut().zip(f_ext).zip(&self.history_force) {
-            *r = f - h;
+        let rows = || rows_outside(n, &self.frozen_rows);
+        for range in &self.frozen_rows {
+            out[range.clone()].fill(0.0);
         }
-        sparse_mul_add(mass, self.mass_coefficient, &self.q_pred, out);
+        for range in rows() {
+            for ((r, f), h) in out[range.clone()]
+                .iter_mut()
+                .zip(&f_ext[range.clone()])
+                .zip(&self.history_force[range])
+            {
+                *r = f - h;
+            }
+        }
+        sparse_mul_add_rows(mass, self.mass_coefficient, &self.q_pred, out, rows());
         if let Some(c) = damping {
-            sparse_mul_add(c, self.damping_coefficient, &self.q_pred, out);
-            sparse_mul_add(c, -(1.0 - self.alpha_f), &self.v_pred, out);
+            sparse_mul_add_rows(c, self.damping_coefficient, &self.q_pred, out, rows());
+            sparse_mul_add_rows(c, -(1.0 - self.alpha_f), &self.v_pred, out, rows());
         }
         Ok(())
     }

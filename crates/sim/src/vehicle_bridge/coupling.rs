@@ -164,6 +164,11 @@ impl Simulation {
             reason: e.to_string(),
             fatal: Some(e),
         };
+        // The geometry at the step's end first: it decides which vehicles are held, and the
+        // vehicles at rest are frozen in the stepper before it forms the step equation.
+        let t_new = self.stepper.t() + dt;
+        self.wheel_geometry(t_new).map_err(fatal)?;
+        self.select_live_wheels().map_err(fatal)?;
         self.stepper
             .step_equation_into(dt, &mut self.eq)
             .map_err(|e| fatal(e.into()))?;
@@ -190,13 +195,12 @@ impl Simulation {
                 &mut self.work.r,
             )
             .map_err(|e| fatal(e.into()))?;
-        self.wheel_geometry(self.eq.t_new).map_err(fatal)?;
-        self.select_live_wheels();
         let c_qa = self.eq.displacement_per_acceleration;
         for i in 0..n {
             self.work.x[i] = self.eq.q_pred[i] + c_qa * self.stepper.a()[i];
         }
-        // A held vehicle takes the predictor with zero acceleration (module `resting`).
+        // A held vehicle takes the predictor with zero acceleration, q̃ = q (frozen in the
+        // stepper: module `resting`).
         for &i in &self.resting.resting_dofs {
             self.work.x[i] = self.eq.q_pred[i];
         }

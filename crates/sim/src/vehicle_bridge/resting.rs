@@ -9,10 +9,11 @@
 //! nothing. The coupled step then leaves it out — its wheels are not evaluated and take no part
 //! in the coupling iteration (residual, capacitance groups, convergence; the force floor keeps
 //! their last value), its rows of A are held (`linalg::BlockDiagonal::hold_dense`) and its DOFs
-//! take the structural predictor with zero acceleration, `x = q̃` (so the stepper's corrector
-//! gives a_{n+1} = 0 and keeps it at rest) — until the first step whose geometry puts one of
-//! its wheels on the span or on a non-zero irregularity; from then on it is stepped like every
-//! other vehicle, for good.
+//! are frozen in the structural stepper (`StructuralStepper::freeze`: v = a = 0, q kept, so
+//! `x = q̃ = q`, and the predictor, history force, effective load and corrector skip its rows)
+//! — until the first step whose geometry puts one of its wheels on the span or on a non-zero
+//! irregularity; from then on it is stepped like every other vehicle, for good. The geometry
+//! of a step is therefore evaluated before its step equation.
 //!
 //! The full step instead moves a vehicle at rest by its start's imbalance: the static start
 //! (wheel loads from the vehicle's statics, body and bogies from K_ff q_f = g_f − K_fw z_w)
@@ -28,9 +29,9 @@
 //! vehicle is evaluated in the first step (its contact outputs are those of the static state
 //! from then on).
 
-use super::Simulation;
 use super::contact::is_rigid;
 use super::scenario::CouplingSolver;
+use super::{Simulation, VehicleBridgeError};
 
 /// How a multibody vehicle takes part in the current step attempt.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -95,14 +96,16 @@ impl Simulation {
         for d in 0..self.vehicles.len() {
             self.a_matrix.hold_dense(d, false);
         }
+        // Nothing frozen (an empty set cannot fail).
+        let _ = self.stepper.freeze(&[]);
     }
 
     /// Decides which vehicles are held out of the step attempt whose geometry
     /// (`wheel_geometry`) is in the work space, and lists the wheels that take part.
-    pub(super) fn select_live_wheels(&mut self) {
+    pub(super) fn select_live_wheels(&mut self) -> Result<(), VehicleBridgeError> {
         let r = &mut self.resting;
         if r.at_rest.is_empty() || !(r.enabled || r.detach) {
-            return;
+            return Ok(());
         }
         // The structural path with the quasi-Newton coupling and without friction (the track
         // and Radau5 paths do not come here).
@@ -164,6 +167,12 @@ impl Simulation {
         }
         r.held_steps += r.part.iter().filter(|&&p| p == Part::Resting).count() as u64;
         r.detached_steps += r.detached.len() as u64;
+        if changed {
+            // The vehicles at rest are frozen in the stepper: v = a = 0, q kept, their rows
+            // left out of the step's work.
+            self.stepper.freeze(&self.resting.resting_dofs)?;
+        }
+        Ok(())
     }
 
     /// Solves vehicles off the span on their own (`true`, the default where it applies:

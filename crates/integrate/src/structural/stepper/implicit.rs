@@ -2,7 +2,7 @@
 //! corrector.
 
 use super::super::linalg::{check_vector, norm_inf};
-use super::super::sparse::sparse_mul_add;
+use super::super::sparse::{rows_outside, sparse_mul_add_rows};
 use super::super::{StepEquation, StructuralMethod, StructuralSystem};
 use crate::IntegrateError;
 
@@ -70,6 +70,27 @@ struct Kinematics {
     a_shift: f64,
 }
 
+/// The start acceleration of an entry with acceleration `a` (`a_n`), previous start
+/// acceleration `a_prev` (`a*_{n−1}`) and step-change shift `shift` (`Kinematics::a_shift`). The algorithmic acceleration of HHT and
+/// generalized-α approximates `q''(t_n + (α_m − α_f)Δt)` (Erlicher, Bonaventura & Bursi
+/// 2002, *Comput. Mech.* 28:83–104), so after a step-size change it is moved to the new
+/// shift with the slope `(a_n − a*_{n−1})/Δt_prev`, where `a*_{n−1}` is the start
+/// acceleration of the previous step (so both ends carry the same shift):
+/// `a*_n = a_n + (α_m − α_f)(Δt − Δt_prev)(a_n − a*_{n−1})/Δt_prev`. Without this the
+/// methods drop to first order when Δt varies (measured in `tests/structural_order.rs`).
+/// The extrapolation is applied only for step ratios `Δt/Δt_prev ∈ [½, 2]`: for larger
+/// jumps it amplified stiff components (measured: gen-α ρ∞ = 0.5 became unstable under
+/// repeated 10× changes), so such a step starts from `a_n` unchanged, which costs O(Δt)
+/// in `a` at that step only.
+#[inline(always)]
+fn start_acceleration(a: f64, a_prev: f64, shift: f64) -> f64 {
+    if shift == 0.0 {
+        a
+    } else {
+        a + shift * (a - a_prev)
+    }
+}
+
 impl StructuralStepper {
     /// The kinematic coefficients of the implicit scheme for step size `dt`.
     fn kinematics(&self, dt: f64) -> Result<Kinematics, IntegrateError> {
@@ -112,36 +133,6 @@ impl StructuralStepper {
         })
     }
 
-    /// The start acceleration of entry `i`. The algorithmic acceleration of HHT and
-    /// generalized-α approximates `q''(t_n + (α_m − α_f)Δt)` (Erlicher, Bonaventura & Bursi
-    /// 2002, *Comput. Mech.* 28:83–104), so after a step-size change it is moved to the new
-    /// shift with the slope `(a_n − a*_{n−1})/Δt_prev`, where `a*_{n−1}` is the start
-    /// acceleration of the previous step (so both ends carry the same shift):
-    /// `a*_n = a_n + (α_m − α_f)(Δt − Δt_prev)(a_n − a*_{n−1})/Δt_prev`. Without this the
-    /// methods drop to first order when Δt varies (measured in `tests/structural_order.rs`).
-    /// The extrapolation is applied only for step ratios `Δt/Δt_prev ∈ [½, 2]`: for larger
-    /// jumps it amplified stiff components (measured: gen-α ρ∞ = 0.5 became unstable under
-    /// repeated 10× changes), so such a step starts from `a_n` unchanged, which costs O(Δt)
-    /// in `a` at that step only.
-    #[inline]
-    fn start_acceleration(&self, k: &Kinematics, i: usize) -> f64 {
-        if k.a_shift == 0.0 {
-            self.a[i]
-        } else {
-            self.a[i] + k.a_shift * (self.a[i] - self.a_prev[i])
-        }
-    }
-
-    /// The predictors `(q̃_i, ṽ_i)` of entry `i`.
-    #[inline]
-    fn predict(&self, k: &Kinematics, dt: f64, i: usize) -> (f64, f64) {
-        let a = self.start_acceleration(k, i);
-        (
-            self.q[i] + dt * self.v[i] + k.q_a * a,
-            self.v[i] + k.v_a * a,
-        )
-    }
-
     /// The step equation of the step `t_n → t_n + dt` (see [`StepEquation`]). Only for the
     /// implicit methods (Newmark with β > 0, HHT, generalized-α, backward Euler).
     pub fn step_equation(&self, dt: f64) -> Result<StepEquation, IntegrateError> {
@@ -169,18 +160,34 @@ impl StructuralStepper {
             mass.symbolic().col_idx(),
             mass.val(),
         );
-        for i in 0..n {
-            (eq.q_pred[i], eq.v_pred[i]) = self.predict(&k, dt, i);
-            let row = row_ptr[i]..row_ptr[i + 1];
-            let inertia: f64 = col_idx[row.clone()]
-                .iter()
-                .zip(&mass_val[row])
-                .map(|(&j, m)| m * self.start_acceleration(&k, j))
-                .sum();
-            eq.history_force[i] = k.alpha_m * inertia + k.alpha_f * self.f_int[i];
+        // Frozen DOFs (module `frozen`): at rest, their rows are not evaluated.
+        eq.frozen_rows.clone_from(&self.frozen);
+        for range in &self.frozen {
+            eq.q_pred[range.clone()].copy_from_slice(&self.q[range.clone()]);
+            eq.v_pred[range.clone()].fill(0.0);
+            eq.history_force[range.clone()].fill(0.0);
+        }
+        // The predictors q̃ = q + Δt v + q_a a*, ṽ = v + v_a a* (a* the start acceleration).
+        let (q, v, a, a_prev, f_int) = (&self.q, &self.v, &self.a, &self.a_prev, &self.f_int);
+        let shift = k.a_shift;
+        let start = |j: usize| start_acceleration(a[j], a_prev[j], shift);
+        for range in rows_outside(n, &self.frozen) {
+            for i in range {
+                let a0 = start(i);
+                eq.q_pred[i] = q[i] + dt * v[i] + k.q_a * a0;
+                eq.v_pred[i] = v[i] + k.v_a * a0;
+                let row = row_ptr[i]..row_ptr[i + 1];
+                let inertia: f64 = col_idx[row.clone()]
+                    .iter()
+                    .zip(&mass_val[row])
+                    .map(|(&j, m)| m * start(j))
+                    .sum();
+                eq.history_force[i] = k.alpha_m * inertia + k.alpha_f * f_int[i];
+            }
         }
         if let Some(c) = &self.damping_sparse {
-            sparse_mul_add(c.as_ref(), k.alpha_f, &self.v, &mut eq.history_force);
+            let rows = rows_outside(n, &self.frozen);
+            sparse_mul_add_rows(c.as_ref(), k.alpha_f, &self.v, &mut eq.history_force, rows);
         }
         eq.displacement_per_acceleration = k.c_qa;
         eq.velocity_per_acceleration = k.c_va;
@@ -207,12 +214,24 @@ impl StructuralStepper {
         check_vector("q_new", q_new, self.q.len())?;
         self.check_problem(problem)?;
         self.save_old_state(dt);
-        for (i, &qn) in q_new.iter().enumerate() {
-            let (q_pred, v_pred) = self.predict(&k, dt, i);
-            self.a_prev[i] = self.start_acceleration(&k, i);
-            self.a[i] = (qn - q_pred) / k.c_qa;
-            self.v[i] = v_pred + k.c_va * self.a[i];
-            self.q[i] = qn;
+        // Frozen DOFs keep their state (module `frozen`).
+        // The predictors q̃ = q + Δt v + q_a a*, ṽ = v + v_a a* (a* the start acceleration).
+        for range in rows_outside(q_new.len(), &self.frozen) {
+            let rows = self.q[range.clone()]
+                .iter_mut()
+                .zip(&mut self.v[range.clone()])
+                .zip(&mut self.a[range.clone()])
+                .zip(&mut self.a_prev[range.clone()])
+                .zip(&q_new[range]);
+            for ((((q, v), a), a_prev), &qn) in rows {
+                let a0 = start_acceleration(*a, *a_prev, k.a_shift);
+                let q_pred = *q + dt * *v + k.q_a * a0;
+                let v_pred = *v + k.v_a * a0;
+                *a_prev = a0;
+                *a = (qn - q_pred) / k.c_qa;
+                *v = v_pred + k.c_va * *a;
+                *q = qn;
+            }
         }
         self.t += dt;
         self.dt_prev = Some(dt);

@@ -4,10 +4,12 @@
 //! * `mod.rs`: the stepper state, construction, restart and the step dispatch;
 //! * `explicit`: the explicit steps (Störmer–Verlet, leapfrog, explicit Newmark);
 //! * `implicit`: the implicit step equation, Newton's method and the corrector;
+//! * `frozen`: DOFs frozen at rest, left out of the implicit step's work;
 //! * `accessors`: the state accessors and the dense output.
 
 mod accessors;
 mod explicit;
+mod frozen;
 mod implicit;
 
 pub use implicit::NewtonOptions;
@@ -97,6 +99,8 @@ pub struct StructuralStepper {
     /// (re)start).
     a_prev: Vec<f64>,
     dt_prev: Option<f64>,
+    /// The DOFs frozen at rest ([`freeze`](Self::freeze)), as sorted, disjoint ranges.
+    frozen: Vec<std::ops::Range<usize>>,
     f_int: Vec<f64>,
     last_step: Option<(f64, f64)>,
     q_old: Vec<f64>,
@@ -182,6 +186,7 @@ impl StructuralStepper {
         self.v.copy_from_slice(v);
         self.last_step = None;
         self.dt_prev = None;
+        self.frozen.clear();
         Ok(())
     }
 
@@ -331,6 +336,7 @@ impl StructuralStepper {
             a: vec![0.0; n],
             a_prev: vec![0.0; n],
             dt_prev: None,
+            frozen: Vec::new(),
             f_int,
             last_step: None,
             q_old: q0.to_vec(),
