@@ -237,7 +237,7 @@ impl BlockDiagonal {
     }
 
     /// Whether dense block `d` is held out of the full products and solves.
-    fn is_held(&self, d: usize) -> bool {
+    pub fn is_held(&self, d: usize) -> bool {
         self.held.get(d).copied().unwrap_or(false)
     }
 
@@ -299,18 +299,19 @@ impl BlockDiagonal {
         Ok(())
     }
 
-    /// `x ← B x` over the dense blocks (B = the inverses or their absolute values), with a
-    /// stack buffer (no allocation).
+    /// `x ← B x` over the dense blocks (B = the inverses or their absolute values) but the
+    /// `deferred` ones, with a stack buffer (no allocation).
     fn dense_apply<'r>(
         &self,
         x: &mut [f64],
         which: DensePart,
         replaced: impl Fn(usize) -> Option<&'r BandedLu>,
+        deferred: impl Fn(usize) -> bool,
     ) {
         // The block's entries of x are gathered once, so that each row is a dot product of two
         // slices (the same products summed in the same order as entry by entry).
         self.with_scratch(|xs, buf| {
-            for (d, b) in self.live_dense() {
+            for (d, b) in self.live_dense().filter(|&(d, _)| !deferred(d)) {
                 let m = b.indices.len();
                 let xs = b.gather(x, xs);
                 let banded = match which {
@@ -456,6 +457,48 @@ impl BlockDiagonal {
         stamp: u64,
         replaced: impl Fn(usize) -> Option<&'r BandedLu>,
     ) {
+        let apply = |d: usize, blk: &DenseBlock, x: &mut [f64]| match replaced(d) {
+            Some(lu) => apply_banded(lu, blk, x),
+            None => apply_dense_inverse(blk, x),
+        };
+        self.solve_pattern_with(x, pattern, support, blocks, mark, stamp, apply);
+    }
+
+    /// [`Self::solve_pattern_in_place`] except on the dense blocks d with `deferred(d)`:
+    /// those are listed in `blocks` and `support` as if applied, and x is left unchanged there
+    /// (the caller applies their factorisations, e.g. to many right-hand sides at once:
+    /// the blocks are disjoint, so the order of their solves does not matter).
+    #[allow(clippy::too_many_arguments)]
+    pub fn solve_pattern_deferring(
+        &self,
+        x: &mut [f64],
+        pattern: &[usize],
+        support: &mut Vec<usize>,
+        blocks: &mut Vec<usize>,
+        mark: &mut [u64],
+        stamp: u64,
+        deferred: impl Fn(usize) -> bool,
+    ) {
+        let apply = |d: usize, blk: &DenseBlock, x: &mut [f64]| {
+            if !deferred(d) {
+                apply_dense_inverse(blk, x);
+            }
+        };
+        self.solve_pattern_with(x, pattern, support, blocks, mark, stamp, apply);
+    }
+
+    /// The pattern solve with `dense(d, block, x)` applying dense block d's inverse.
+    #[allow(clippy::too_many_arguments)]
+    fn solve_pattern_with(
+        &self,
+        x: &mut [f64],
+        pattern: &[usize],
+        support: &mut Vec<usize>,
+        blocks: &mut Vec<usize>,
+        mark: &mut [u64],
+        stamp: u64,
+        dense: impl Fn(usize, &DenseBlock, &mut [f64]),
+    ) {
         support.clear();
         blocks.clear();
         for &i in pattern {
@@ -486,10 +529,7 @@ impl BlockDiagonal {
                 }
                 Owner::Dense(d) => {
                     let blk = &self.dense[d];
-                    match replaced(d) {
-                        Some(lu) => apply_banded(lu, blk, x),
-                        None => apply_dense_inverse(blk, x),
-                    }
+                    dense(d, blk, x);
                     support.extend_from_slice(&blk.indices);
                 }
             }
@@ -508,7 +548,21 @@ impl BlockDiagonal {
         x: &mut [f64],
         replaced: impl Fn(usize) -> Option<&'r BandedLu>,
     ) {
-        self.dense_apply(x, DensePart::Inverse, replaced);
+        self.dense_apply(x, DensePart::Inverse, replaced, |_| false);
+        self.small_solve(x);
+    }
+
+    /// [`Self::solve_in_place`] except on the dense blocks d with `deferred(d)` that are not
+    /// held: x is left unchanged there (the caller applies their factorisations, e.g. with
+    /// other right-hand sides at once; the blocks are disjoint, so the order of the solves
+    /// does not matter).
+    pub fn solve_in_place_deferring(&self, x: &mut [f64], deferred: impl Fn(usize) -> bool) {
+        self.dense_apply(x, DensePart::Inverse, |_| None, deferred);
+        self.small_solve(x);
+    }
+
+    /// `x ← B⁻¹ x` over the 1×1 and 2×2 blocks.
+    fn small_solve(&self, x: &mut [f64]) {
         for &(i, j, inv) in &self.blocks {
             if j == NONE {
                 x[i] *= inv[0];
@@ -523,7 +577,7 @@ impl BlockDiagonal {
     /// `x ← |A⁻¹| x` in place, with the entrywise absolute value of each block's inverse (a
     /// bound on how an error vector of x's magnitudes propagates through a solve).
     pub fn solve_abs_in_place(&self, x: &mut [f64]) {
-        self.dense_apply(x, DensePart::AbsInverse, |_| None);
+        self.dense_apply(x, DensePart::AbsInverse, |_| None, |_| false);
         self.small_abs(x);
     }
 

@@ -7,6 +7,8 @@ use integrate::DenseLu;
 use super::banded::BandedLu;
 use super::{BlockDiagonal, Singular};
 
+mod folding;
+
 /// Work space of [`contact_update`]: A⁻¹ĝ per wheel with its support and blocks, the
 /// coupling groups, and the LU storage of each capacitance size met (allocated at its first
 /// use, then reused).
@@ -55,6 +57,15 @@ pub struct CapacitanceWork {
     fold_lu: Vec<BandedLu>,
     /// Folded wheels so far (statistics).
     folds: u64,
+    /// Per dense block: what `fold_lu` was factorised from (A's version, 0 for nothing
+    /// valid, and the diagonal additions bit for bit), and the factorisations so reused.
+    fold_key: Vec<(u64, Vec<(usize, u64)>)>,
+    fold_reused: u64,
+    /// The wheels solved with the folded blocks in this update, and the right-hand sides of
+    /// one block with its scratch ([`BandedLu::solve_many`]).
+    batch: Vec<usize>,
+    many: Vec<f64>,
+    many_buf: Vec<f64>,
 }
 
 /// What a stored A⁻¹ĝ was computed from.
@@ -162,86 +173,6 @@ impl CapacitanceWork {
         let values = &mut self.on_support[wheel];
         values.clear();
         values.extend(self.support[wheel].iter().map(|&i| x[i]));
-    }
-
-    /// Folds the compliant wheels of `active` that are off the span (ĝ and v on the wheel's
-    /// DOF only) and belong to a banded block of A into that block ([`contact_update`],
-    /// "Folding"): marks them in `folded` and factorises each block changed. False (nothing
-    /// folded) if there are none, or if a changed block is singular (the capacitance form
-    /// then takes every wheel, as without folding).
-    #[allow(clippy::too_many_arguments)]
-    fn fold_off_span(
-        &mut self,
-        a: &BlockDiagonal,
-        s: f64,
-        g_hat: &[impl AsRef<[f64]>],
-        v: &[impl AsRef<[f64]>],
-        pattern: &[impl AsRef<[usize]>],
-        active: &[usize],
-        compliance: &[f64],
-    ) -> bool {
-        let nd = a.dense_count();
-        self.fold_add.resize_with(nd, Vec::new);
-        self.fold_lu.resize_with(nd, BandedLu::default);
-        self.fold_used.clear();
-        self.fold_used.resize(nd, false);
-        for add in &mut self.fold_add {
-            add.clear();
-        }
-        self.folded.clear();
-        self.folded.resize(active.len(), false);
-        let mut any = false;
-        for (c, &wheel) in active.iter().enumerate() {
-            let &[i] = pattern[wheel].as_ref() else {
-                continue;
-            };
-            let Some((d, r)) = a.banded_block(i) else {
-                continue;
-            };
-            if compliance[c] > 0.0 {
-                let value = s * g_hat[wheel].as_ref()[i] * v[wheel].as_ref()[i] / compliance[c];
-                self.fold_add[d].push((r, value));
-                self.fold_used[d] = true;
-                self.folded[c] = true;
-                any = true;
-            }
-        }
-        for d in 0..nd {
-            if !self.fold_used[d] {
-                continue;
-            }
-            let base = a.banded(d).expect("a folded block is banded");
-            if !base.refactor_with_diagonal(&self.fold_add[d], &mut self.fold_lu[d]) {
-                self.fold_used.fill(false);
-                self.folded.fill(false);
-                return false;
-            }
-        }
-        if any {
-            self.folds += self.folded.iter().filter(|&&f| f).count() as u64;
-        }
-        any
-    }
-
-    /// Whether `pattern` touches a block changed by folding.
-    fn touches_fold(&self, a: &BlockDiagonal, pattern: &[usize]) -> bool {
-        pattern.iter().any(|&i| {
-            a.banded_block(i)
-                .is_some_and(|(d, _)| self.fold_used.get(d).copied().unwrap_or(false))
-        })
-    }
-
-    /// A_c⁻¹ĝ of `wheel` into `ainv_g[wheel]`, A_c being A with the folded wheels (not
-    /// kept for reuse: A_c changes with every update).
-    fn solve_wheel_folded(
-        &mut self,
-        a: &BlockDiagonal,
-        wheel: usize,
-        g: &[f64],
-        pattern: &[usize],
-    ) {
-        self.solve_wheel_fresh(a, wheel, g, pattern, true);
-        self.key[wheel] = SolveKey::default();
     }
 
     /// The wheels folded into a band so far ([`contact_update`], "Folding").
@@ -373,23 +304,29 @@ pub fn contact_update(
                 x[i] -= s * g_hat[wheel].as_ref()[i] * delta_tilde[c] / compliance[c];
             }
         }
-        let (used, lus) = (&work.fold_used, &work.fold_lu);
-        a.solve_in_place_replacing(x, |d| used[d].then(|| &lus[d]));
+        // The folded blocks are solved below, with the wheels that touch them.
+        let used = &work.fold_used;
+        a.solve_in_place_deferring(x, |d| used[d]);
     } else {
         a.solve_in_place(x);
     }
     let folded = |work: &CapacitanceWork, c: usize| folding && work.folded[c];
-    // A⁻¹ĝ_c (A_c⁻¹ĝ_c) on the blocks ĝ_c touches (the rest of ainv_g[wheel] is kept zero).
+    // A⁻¹ĝ_c (A_c⁻¹ĝ_c) on the blocks ĝ_c touches (the rest of ainv_g[wheel] is kept zero);
+    // the wheels touching a folded block all at once, with x's entries on the folded blocks.
+    work.batch.clear();
     for (c, &wheel) in active.iter().enumerate() {
         if folded(work, c) {
             continue;
         }
         let (g, p) = (g_hat[wheel].as_ref(), pattern[wheel].as_ref());
         if folding && work.touches_fold(a, p) {
-            work.solve_wheel_folded(a, wheel, g, p);
+            work.batch.push(wheel);
         } else {
             work.solve_wheel(a, wheel, g, p);
         }
+    }
+    if folding {
+        work.solve_wheels_folded(a, g_hat, pattern, x);
     }
     // Coupling groups: wheels touching a common block.
     let update = work.next_stamp();
