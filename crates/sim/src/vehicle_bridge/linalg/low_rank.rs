@@ -137,20 +137,27 @@ impl CapacitanceWork {
             self.reused += 1;
             return;
         }
-        self.solve_wheel_fresh(a, wheel, g, pattern, false);
+        self.solve_wheel_fresh(a, wheel, g, pattern);
         self.key[wheel].set(a.version(), g, pattern);
     }
 
-    /// A⁻¹ĝ of `wheel` into `ainv_g[wheel]` (with the folded blocks' factorisations if
-    /// `folded`), its support and blocks.
-    fn solve_wheel_fresh(
-        &mut self,
-        a: &BlockDiagonal,
-        wheel: usize,
-        g: &[f64],
-        pattern: &[usize],
-        folded: bool,
-    ) {
+    /// A⁻¹ĝ of `wheel` into `ainv_g[wheel]`, its support and blocks.
+    fn solve_wheel_fresh(&mut self, a: &BlockDiagonal, wheel: usize, g: &[f64], pattern: &[usize]) {
+        self.start_wheel(wheel, g, pattern);
+        a.solve_pattern_in_place(
+            &mut self.ainv_g[wheel],
+            pattern,
+            &mut self.support[wheel],
+            &mut self.blocks[wheel],
+            &mut self.mark,
+            self.stamp,
+        );
+        self.keep_support_values(wheel);
+    }
+
+    /// Sets `ainv_g[wheel]` to ĝ (zero off `pattern`) for a pattern solve with the next
+    /// stamp (counted as a solve).
+    fn start_wheel(&mut self, wheel: usize, g: &[f64], pattern: &[usize]) {
         self.solves += 1;
         let x = &mut self.ainv_g[wheel];
         for &i in &self.support[wheel] {
@@ -160,19 +167,13 @@ impl CapacitanceWork {
             x[i] = g[i];
         }
         self.stamp += 1;
-        let (used, lus) = (&self.fold_used, &self.fold_lu);
-        a.solve_pattern_replacing(
-            x,
-            pattern,
-            &mut self.support[wheel],
-            &mut self.blocks[wheel],
-            &mut self.mark,
-            self.stamp,
-            |d| (folded && used[d]).then(|| &lus[d]),
-        );
+    }
+
+    /// Keeps `wheel`'s solved A⁻¹ĝ on its support in `on_support`.
+    fn keep_support_values(&mut self, wheel: usize) {
         let values = &mut self.on_support[wheel];
         values.clear();
-        values.extend(self.support[wheel].iter().map(|&i| x[i]));
+        values.extend(self.support[wheel].iter().map(|&i| self.ainv_g[wheel][i]));
     }
 
     /// The wheels folded into a band so far ([`contact_update`], "Folding").

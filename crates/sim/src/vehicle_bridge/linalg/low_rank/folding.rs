@@ -120,18 +120,10 @@ impl CapacitanceWork {
         for b in 0..self.batch.len() {
             let wheel = self.batch[b];
             let (g, p) = (g_hat[wheel].as_ref(), pattern[wheel].as_ref());
-            self.solves += 1;
-            let y = &mut self.ainv_g[wheel];
-            for &i in &self.support[wheel] {
-                y[i] = 0.0;
-            }
-            for &i in p {
-                y[i] = g[i];
-            }
-            self.stamp += 1;
+            self.start_wheel(wheel, g, p);
             let used = &self.fold_used;
             a.solve_pattern_deferring(
-                y,
+                &mut self.ainv_g[wheel],
                 p,
                 &mut self.support[wheel],
                 &mut self.blocks[wheel],
@@ -146,10 +138,8 @@ impl CapacitanceWork {
                 self.solve_block_many(a, d, x);
             }
         }
-        for &wheel in &self.batch {
-            let values = &mut self.on_support[wheel];
-            values.clear();
-            values.extend(self.support[wheel].iter().map(|&i| self.ainv_g[wheel][i]));
+        for b in 0..self.batch.len() {
+            self.keep_support_values(self.batch[b]);
         }
     }
 
