@@ -254,21 +254,34 @@ impl BandedLu {
                     y[k * g + r] = x[o];
                 }
             }
-            match g {
-                1 => self.substitute_many::<1>(y),
-                2 => self.substitute_many::<2>(y),
-                3 => self.substitute_many::<3>(y),
-                4 => self.substitute_many::<4>(y),
-                5 => self.substitute_many::<5>(y),
-                6 => self.substitute_many::<6>(y),
-                7 => self.substitute_many::<7>(y),
-                _ => self.substitute_many::<MANY>(y),
-            }
+            self.solve_interleaved(y, g);
             for (r, x) in group.chunks_exact_mut(m).enumerate() {
                 for (k, &o) in self.order.iter().enumerate() {
                     x[o] = y[k * g + r];
                 }
             }
+        }
+    }
+
+    /// The block position of each band position: right-hand sides gathered in this order
+    /// (`y[k g + r]` = right-hand side r at block position `order()[k]`) suit
+    /// [`Self::solve_interleaved`].
+    pub fn order(&self) -> &[usize] {
+        &self.order
+    }
+
+    /// `y_r ← B⁻¹ y_r` for `g` ≤ [`MANY`] right-hand sides in band order, interleaved
+    /// (entry `k g + r`): the substitutions of [`Self::solve_many`] without its gathering.
+    pub fn solve_interleaved(&self, y: &mut [f64], g: usize) {
+        match g {
+            1 => self.substitute_many::<1>(y),
+            2 => self.substitute_many::<2>(y),
+            3 => self.substitute_many::<3>(y),
+            4 => self.substitute_many::<4>(y),
+            5 => self.substitute_many::<5>(y),
+            6 => self.substitute_many::<6>(y),
+            7 => self.substitute_many::<7>(y),
+            _ => self.substitute_many::<MANY>(y),
         }
     }
 

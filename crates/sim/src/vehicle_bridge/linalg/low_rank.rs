@@ -61,10 +61,11 @@ pub struct CapacitanceWork {
     /// valid, and the diagonal additions bit for bit), and the factorisations so reused.
     fold_key: Vec<(u64, Vec<(usize, u64)>)>,
     fold_reused: u64,
-    /// The wheels solved with the folded blocks in this update, and the right-hand sides of
-    /// one block with its scratch ([`BandedLu::solve_many`]).
+    /// The wheels solved with the folded blocks in this update, the right-hand sides of one
+    /// block (a wheel, or `usize::MAX` for the step's), and their interleaved band-order
+    /// scratch ([`BandedLu::solve_interleaved`]).
     batch: Vec<usize>,
-    many: Vec<f64>,
+    rows: Vec<usize>,
     many_buf: Vec<f64>,
 }
 

@@ -153,38 +153,42 @@ impl CapacitanceWork {
         let Some(id) = indices.first().and_then(|&i| a.block_of(i)) else {
             return;
         };
+        // The right-hand sides: x (usize::MAX) unless the block is held, and the wheels that
+        // deferred it; gathered straight into band order, up to MANY at a time.
+        self.rows.clear();
+        if !a.is_held(d) {
+            self.rows.push(usize::MAX);
+        }
+        for &wheel in &self.batch {
+            if self.blocks[wheel].contains(&id) {
+                self.rows.push(wheel);
+            }
+        }
+        let lu = &self.fold_lu[d];
         let m = indices.len();
-        self.many.clear();
-        let with_x = !a.is_held(d);
-        if with_x {
-            self.many.extend(indices.iter().map(|&i| x[i]));
-        }
-        let mut rows = usize::from(with_x);
-        for &wheel in &self.batch {
-            if self.blocks[wheel].contains(&id) {
-                let y = &self.ainv_g[wheel];
-                self.many.extend(indices.iter().map(|&i| y[i]));
-                rows += 1;
-            }
-        }
-        if rows == 0 {
-            return;
-        }
         self.many_buf.resize(MANY * m, 0.0);
-        self.fold_lu[d].solve_many(&mut self.many, rows, &mut self.many_buf);
-        let mut solved = self.many.chunks_exact(m);
-        if with_x {
-            let row = solved.next().expect("x's row");
-            for (&i, &value) in indices.iter().zip(row) {
-                x[i] = value;
+        for group in self.rows.chunks(MANY) {
+            let g = group.len();
+            let y = &mut self.many_buf[..g * m];
+            for (r, &row) in group.iter().enumerate() {
+                let src: &[f64] = if row == usize::MAX {
+                    x
+                } else {
+                    &self.ainv_g[row]
+                };
+                for (k, &o) in lu.order().iter().enumerate() {
+                    y[k * g + r] = src[indices[o]];
+                }
             }
-        }
-        for &wheel in &self.batch {
-            if self.blocks[wheel].contains(&id) {
-                let row = solved.next().expect("one solved row per wheel");
-                let y = &mut self.ainv_g[wheel];
-                for (&i, &value) in indices.iter().zip(row) {
-                    y[i] = value;
+            lu.solve_interleaved(y, g);
+            for (r, &row) in group.iter().enumerate() {
+                let dst: &mut [f64] = if row == usize::MAX {
+                    x
+                } else {
+                    &mut self.ainv_g[row]
+                };
+                for (k, &o) in lu.order().iter().enumerate() {
+                    dst[indices[o]] = y[k * g + r];
                 }
             }
         }
