@@ -1,23 +1,26 @@
-//! Folding of the compliant off-span wheels into an articulated rake's band ([`contact_update`](super::contact_update),
-//! "Folding"): the factorisation of each changed block, reused while A and the folded wheels'
-//! diagonal additions are the same bit for bit, and the solves of the step's right-hand side
-//! and of the wheels that touch a folded block, all right-hand sides of a block in one pass
-//! over its band ([`BandedLu::solve_many`]).
+//! Folding of the compliant off-span wheels into an articulated rake's band
+//! ([`contact_update`](super::contact_update), "Folding"): the factorisation of each changed
+//! block, reused while A and the folded wheels' diagonal additions are the same bit for bit,
+//! and the solves of the step's right-hand side and of the wheels that touch a folded block,
+//! all right-hand sides of a block in one pass over its band
+//! ([`BandedLu::solve_interleaved`]).
 //!
 //! Both are the operations of the wheel-by-wheel path on the same inputs: a reused
 //! factorisation is the one the refactorisation would compute (same matrix, same
 //! operations), and the batched solve does each right-hand side's operations in the same
-//! order; the results are identical bit for bit (tested against the wheel-by-wheel solve and
-//! against the dense bordered solve).
+//! order; the results are identical bit for bit (the interleaved substitutions against
+//! [`BandedLu::solve`] in `banded`'s unit tests, the update against the dense bordered solve in
+//! `tests/vehicle_bridge_banded.rs`).
 
 use super::super::banded::{BandedLu, MANY};
 use super::{BlockDiagonal, CapacitanceWork, SolveKey};
 
 impl CapacitanceWork {
     /// Folds the compliant wheels of `active` that are off the span (ĝ and v on the wheel's
-    /// DOF only) and belong to a banded block of A into that block ([`contact_update`](super::contact_update),
-    /// "Folding"): marks them in `folded` and factorises each block changed (unless its
-    /// factorisation from the same A and the same additions is at hand). False (nothing
+    /// DOF only) and belong to a banded block of A into that block
+    /// ([`contact_update`](super::contact_update), "Folding"): marks them in `folded` and
+    /// factorises each block changed (unless its factorisation from the same A and the same
+    /// additions is at hand). False (nothing
     /// folded) if there are none, or if a changed block is singular (the capacitance form
     /// then takes every wheel, as without folding).
     #[allow(clippy::too_many_arguments)]
@@ -108,8 +111,8 @@ impl CapacitanceWork {
     /// folded blocks' part of `x ← A_c⁻¹ x` (x solved elsewhere already,
     /// [`BlockDiagonal::solve_in_place_deferring`]): each wheel's pattern solve without the
     /// folded blocks, then per folded block x and the wheels that touch it solved together
-    /// ([`BandedLu::solve_many`]); then the wheels' supports' values. The same result, bit for
-    /// bit, as solving x and the wheels one by one.
+    /// ([`BandedLu::solve_interleaved`]); then the wheels' supports' values. The same result,
+    /// bit for bit, as solving x and the wheels one by one.
     pub(super) fn solve_wheels_folded(
         &mut self,
         a: &BlockDiagonal,
