@@ -106,7 +106,8 @@ fn rake_band_solve_equals_dense_lu() {
 /// wheel), the others off it (the wheel only), one of those rigid and two out of contact. The
 /// update folds the compliant off-span wheels into the rake's band and keeps the rest in the
 /// capacitance form; it must equal the dense bordered solve (faer LU of the whole system) to
-/// 1e-12 in Δx and ΔF, also when the work space is reused with other compliances.
+/// 1e-12 in Δx and ΔF, also when the work space is reused with other compliances, and when
+/// the same compliances come again (the band's factorisation is then reused).
 #[test]
 fn folded_update_equals_dense_for_a_rake() {
     let mut rng = ChaCha8Rng::seed_from_u64(17);
@@ -144,17 +145,23 @@ fn folded_update_equals_dense_for_a_rake() {
         .collect();
     let rhs: Vec<f64> = (0..n).map(|_| rng.random::<f64>() - 0.5).collect();
     let mut work = CapacitanceWork::default();
-    for round in 0..2 {
-        let compliance: Vec<f64> = active
-            .iter()
-            .map(|&k| {
-                if k == rigid {
-                    0.0
-                } else {
-                    1.0 / (5e8 + 1e9 * rng.random::<f64>())
-                }
-            })
-            .collect();
+    let mut compliance: Vec<f64> = Vec::new();
+    let mut last: Option<(Vec<f64>, Vec<f64>)> = None;
+    // Rounds 0 and 1 with new compliances (the band factorised again), round 2 with round
+    // 1's (its factorisation reused).
+    for round in 0..3 {
+        if round < 2 {
+            compliance = active
+                .iter()
+                .map(|&k| {
+                    if k == rigid {
+                        0.0
+                    } else {
+                        1.0 / (5e8 + 1e9 * rng.random::<f64>())
+                    }
+                })
+                .collect();
+        }
         let mut x = rhs.clone();
         let mut df = vec![0.0; active.len()];
         contact_update(
@@ -189,13 +196,22 @@ fn folded_update_equals_dense_for_a_rake() {
         let (ex, ef) = (rel(&x, &x2), rel(&df, &df2));
         println!("round {round}: folded vs dense: state {ex:.2e}, forces {ef:.2e}");
         assert!(ex < 1e-12 && ef < 1e-12, "{ex} {ef}");
+        if round == 2 {
+            // The same inputs as round 1: the same update bit for bit.
+            let (x1, df1) = last.as_ref().unwrap();
+            assert!(x.iter().zip(x1).all(|(a, b)| a.to_bits() == b.to_bits()));
+            assert!(df.iter().zip(df1).all(|(a, b)| a.to_bits() == b.to_bits()));
+        }
+        last = Some((x.clone(), df.clone()));
         let r = active.iter().position(|&k| k == rigid).unwrap();
         let vdx: f64 = vs[rigid].iter().zip(&x).map(|(a, b)| a * b).sum();
         assert!((vdx + delta[r]).abs() < 1e-10 * delta[r]);
     }
-    // Every compliant off-span wheel in contact was folded, in both rounds.
+    // Every compliant off-span wheel in contact was folded, in every round; the band was
+    // factorised in rounds 0 and 1 and reused in round 2 only.
     let folded = active.iter().filter(|&&k| k >= 4 && k != rigid).count() as u64;
-    assert_eq!(work.fold_count(), 2 * folded);
+    assert_eq!(work.fold_count(), 3 * folded);
+    assert_eq!(work.fold_reuse_count(), 1);
 }
 
 /// `|A⁻¹| e` at the wheels only (the force floor's need) equals the full product there bit for

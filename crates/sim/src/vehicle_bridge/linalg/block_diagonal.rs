@@ -134,20 +134,6 @@ fn apply_dense_inverse(blk: &DenseBlock, x: &mut [f64]) {
     }
 }
 
-/// `x ← B⁻¹ x` on a dense block's indices by the band factorisation `lu` (of B or of a
-/// changed B).
-fn apply_banded(lu: &BandedLu, blk: &DenseBlock, x: &mut [f64]) {
-    let m = blk.indices.len();
-    let (mut xs, mut buf) = ([0.0; MAX_DENSE_BLOCK], [0.0; MAX_DENSE_BLOCK]);
-    for (v, &i) in xs.iter_mut().zip(&blk.indices) {
-        *v = x[i];
-    }
-    lu.solve(&mut xs[..m], &mut buf);
-    for (v, &i) in xs.iter().zip(&blk.indices) {
-        x[i] = *v;
-    }
-}
-
 /// Dense blocks up to this size use a small stack buffer (zeroing the largest one at every
 /// pattern solve would cost more than the solve of a bogie vehicle's 10 × 10 block).
 const SMALL_DENSE_BLOCK: usize = 16;
@@ -237,7 +223,7 @@ impl BlockDiagonal {
     }
 
     /// Whether dense block `d` is held out of the full products and solves.
-    fn is_held(&self, d: usize) -> bool {
+    pub fn is_held(&self, d: usize) -> bool {
         self.held.get(d).copied().unwrap_or(false)
     }
 
@@ -299,22 +285,17 @@ impl BlockDiagonal {
         Ok(())
     }
 
-    /// `x ← B x` over the dense blocks (B = the inverses or their absolute values), with a
-    /// stack buffer (no allocation).
-    fn dense_apply<'r>(
-        &self,
-        x: &mut [f64],
-        which: DensePart,
-        replaced: impl Fn(usize) -> Option<&'r BandedLu>,
-    ) {
+    /// `x ← B x` over the dense blocks (B = the inverses or their absolute values) but the
+    /// `deferred` ones, with a stack buffer (no allocation).
+    fn dense_apply(&self, x: &mut [f64], which: DensePart, deferred: impl Fn(usize) -> bool) {
         // The block's entries of x are gathered once, so that each row is a dot product of two
         // slices (the same products summed in the same order as entry by entry).
         self.with_scratch(|xs, buf| {
-            for (d, b) in self.live_dense() {
+            for (_, b) in self.live_dense().filter(|&(d, _)| !deferred(d)) {
                 let m = b.indices.len();
                 let xs = b.gather(x, xs);
                 let banded = match which {
-                    DensePart::Inverse => replaced(d).or(b.banded.as_ref()),
+                    DensePart::Inverse => b.banded.as_ref(),
                     DensePart::AbsInverse => None,
                 };
                 match (banded, which) {
@@ -440,13 +421,16 @@ impl BlockDiagonal {
         mark: &mut [u64],
         stamp: u64,
     ) {
-        self.solve_pattern_replacing(x, pattern, support, blocks, mark, stamp, |_| None);
+        let apply = |_: usize, blk: &DenseBlock, x: &mut [f64]| apply_dense_inverse(blk, x);
+        self.solve_pattern_with(x, pattern, support, blocks, mark, stamp, apply);
     }
 
-    /// [`Self::solve_pattern_in_place`] with the factorisation `replaced(d)` instead of dense
-    /// block d's own where it is given (as [`Self::solve_in_place_replacing`]).
+    /// [`Self::solve_pattern_in_place`] except on the dense blocks d with `deferred(d)`:
+    /// those are listed in `blocks` and `support` as if applied, and x is left unchanged there
+    /// (the caller applies their factorisations, e.g. to many right-hand sides at once:
+    /// the blocks are disjoint, so the order of their solves does not matter).
     #[allow(clippy::too_many_arguments)]
-    pub fn solve_pattern_replacing<'r>(
+    pub fn solve_pattern_deferring(
         &self,
         x: &mut [f64],
         pattern: &[usize],
@@ -454,7 +438,27 @@ impl BlockDiagonal {
         blocks: &mut Vec<usize>,
         mark: &mut [u64],
         stamp: u64,
-        replaced: impl Fn(usize) -> Option<&'r BandedLu>,
+        deferred: impl Fn(usize) -> bool,
+    ) {
+        let apply = |d: usize, blk: &DenseBlock, x: &mut [f64]| {
+            if !deferred(d) {
+                apply_dense_inverse(blk, x);
+            }
+        };
+        self.solve_pattern_with(x, pattern, support, blocks, mark, stamp, apply);
+    }
+
+    /// The pattern solve with `dense(d, block, x)` applying dense block d's inverse.
+    #[allow(clippy::too_many_arguments)]
+    fn solve_pattern_with(
+        &self,
+        x: &mut [f64],
+        pattern: &[usize],
+        support: &mut Vec<usize>,
+        blocks: &mut Vec<usize>,
+        mark: &mut [u64],
+        stamp: u64,
+        dense: impl Fn(usize, &DenseBlock, &mut [f64]),
     ) {
         support.clear();
         blocks.clear();
@@ -486,10 +490,7 @@ impl BlockDiagonal {
                 }
                 Owner::Dense(d) => {
                     let blk = &self.dense[d];
-                    match replaced(d) {
-                        Some(lu) => apply_banded(lu, blk, x),
-                        None => apply_dense_inverse(blk, x),
-                    }
+                    dense(d, blk, x);
                     support.extend_from_slice(&blk.indices);
                 }
             }
@@ -498,17 +499,21 @@ impl BlockDiagonal {
 
     /// `x ← A⁻¹ x` in place (held dense blocks: x unchanged there).
     pub fn solve_in_place(&self, x: &mut [f64]) {
-        self.solve_in_place_replacing(x, |_| None);
+        self.dense_apply(x, DensePart::Inverse, |_| false);
+        self.small_solve(x);
     }
 
-    /// [`Self::solve_in_place`] with the factorisation `replaced(d)` instead of dense block
-    /// d's own where it is given (a block changed by folded contacts, `low_rank`).
-    pub fn solve_in_place_replacing<'r>(
-        &self,
-        x: &mut [f64],
-        replaced: impl Fn(usize) -> Option<&'r BandedLu>,
-    ) {
-        self.dense_apply(x, DensePart::Inverse, replaced);
+    /// [`Self::solve_in_place`] except on the dense blocks d with `deferred(d)` that are not
+    /// held: x is left unchanged there (the caller applies their factorisations, e.g. with
+    /// other right-hand sides at once; the blocks are disjoint, so the order of the solves
+    /// does not matter).
+    pub fn solve_in_place_deferring(&self, x: &mut [f64], deferred: impl Fn(usize) -> bool) {
+        self.dense_apply(x, DensePart::Inverse, deferred);
+        self.small_solve(x);
+    }
+
+    /// `x ← B⁻¹ x` over the 1×1 and 2×2 blocks.
+    fn small_solve(&self, x: &mut [f64]) {
         for &(i, j, inv) in &self.blocks {
             if j == NONE {
                 x[i] *= inv[0];
@@ -523,7 +528,7 @@ impl BlockDiagonal {
     /// `x ← |A⁻¹| x` in place, with the entrywise absolute value of each block's inverse (a
     /// bound on how an error vector of x's magnitudes propagates through a solve).
     pub fn solve_abs_in_place(&self, x: &mut [f64]) {
-        self.dense_apply(x, DensePart::AbsInverse, |_| None);
+        self.dense_apply(x, DensePart::AbsInverse, |_| false);
         self.small_abs(x);
     }
 

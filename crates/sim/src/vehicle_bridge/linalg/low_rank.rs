@@ -7,6 +7,8 @@ use integrate::DenseLu;
 use super::banded::BandedLu;
 use super::{BlockDiagonal, Singular};
 
+mod folding;
+
 /// Work space of [`contact_update`]: A⁻¹ĝ per wheel with its support and blocks, the
 /// coupling groups, and the LU storage of each capacitance size met (allocated at its first
 /// use, then reused).
@@ -55,6 +57,16 @@ pub struct CapacitanceWork {
     fold_lu: Vec<BandedLu>,
     /// Folded wheels so far (statistics).
     folds: u64,
+    /// Per dense block: what `fold_lu` was factorised from (A's version, 0 for nothing
+    /// valid, and the diagonal additions bit for bit), and the factorisations so reused.
+    fold_key: Vec<(u64, Vec<(usize, u64)>)>,
+    fold_reused: u64,
+    /// The wheels solved with the folded blocks in this update, the right-hand sides of one
+    /// block (a wheel, or `usize::MAX` for the step's), and their interleaved band-order
+    /// scratch ([`BandedLu::solve_interleaved`]).
+    batch: Vec<usize>,
+    rows: Vec<usize>,
+    many_buf: Vec<f64>,
 }
 
 /// What a stored A⁻¹ĝ was computed from.
@@ -126,20 +138,27 @@ impl CapacitanceWork {
             self.reused += 1;
             return;
         }
-        self.solve_wheel_fresh(a, wheel, g, pattern, false);
+        self.solve_wheel_fresh(a, wheel, g, pattern);
         self.key[wheel].set(a.version(), g, pattern);
     }
 
-    /// A⁻¹ĝ of `wheel` into `ainv_g[wheel]` (with the folded blocks' factorisations if
-    /// `folded`), its support and blocks.
-    fn solve_wheel_fresh(
-        &mut self,
-        a: &BlockDiagonal,
-        wheel: usize,
-        g: &[f64],
-        pattern: &[usize],
-        folded: bool,
-    ) {
+    /// A⁻¹ĝ of `wheel` into `ainv_g[wheel]`, its support and blocks.
+    fn solve_wheel_fresh(&mut self, a: &BlockDiagonal, wheel: usize, g: &[f64], pattern: &[usize]) {
+        self.start_wheel(wheel, g, pattern);
+        a.solve_pattern_in_place(
+            &mut self.ainv_g[wheel],
+            pattern,
+            &mut self.support[wheel],
+            &mut self.blocks[wheel],
+            &mut self.mark,
+            self.stamp,
+        );
+        self.keep_support_values(wheel);
+    }
+
+    /// Sets `ainv_g[wheel]` to ĝ (zero off `pattern`) for a pattern solve with the next
+    /// stamp (counted as a solve).
+    fn start_wheel(&mut self, wheel: usize, g: &[f64], pattern: &[usize]) {
         self.solves += 1;
         let x = &mut self.ainv_g[wheel];
         for &i in &self.support[wheel] {
@@ -149,99 +168,13 @@ impl CapacitanceWork {
             x[i] = g[i];
         }
         self.stamp += 1;
-        let (used, lus) = (&self.fold_used, &self.fold_lu);
-        a.solve_pattern_replacing(
-            x,
-            pattern,
-            &mut self.support[wheel],
-            &mut self.blocks[wheel],
-            &mut self.mark,
-            self.stamp,
-            |d| (folded && used[d]).then(|| &lus[d]),
-        );
+    }
+
+    /// Keeps `wheel`'s solved A⁻¹ĝ on its support in `on_support`.
+    fn keep_support_values(&mut self, wheel: usize) {
         let values = &mut self.on_support[wheel];
         values.clear();
-        values.extend(self.support[wheel].iter().map(|&i| x[i]));
-    }
-
-    /// Folds the compliant wheels of `active` that are off the span (ĝ and v on the wheel's
-    /// DOF only) and belong to a banded block of A into that block ([`contact_update`],
-    /// "Folding"): marks them in `folded` and factorises each block changed. False (nothing
-    /// folded) if there are none, or if a changed block is singular (the capacitance form
-    /// then takes every wheel, as without folding).
-    #[allow(clippy::too_many_arguments)]
-    fn fold_off_span(
-        &mut self,
-        a: &BlockDiagonal,
-        s: f64,
-        g_hat: &[impl AsRef<[f64]>],
-        v: &[impl AsRef<[f64]>],
-        pattern: &[impl AsRef<[usize]>],
-        active: &[usize],
-        compliance: &[f64],
-    ) -> bool {
-        let nd = a.dense_count();
-        self.fold_add.resize_with(nd, Vec::new);
-        self.fold_lu.resize_with(nd, BandedLu::default);
-        self.fold_used.clear();
-        self.fold_used.resize(nd, false);
-        for add in &mut self.fold_add {
-            add.clear();
-        }
-        self.folded.clear();
-        self.folded.resize(active.len(), false);
-        let mut any = false;
-        for (c, &wheel) in active.iter().enumerate() {
-            let &[i] = pattern[wheel].as_ref() else {
-                continue;
-            };
-            let Some((d, r)) = a.banded_block(i) else {
-                continue;
-            };
-            if compliance[c] > 0.0 {
-                let value = s * g_hat[wheel].as_ref()[i] * v[wheel].as_ref()[i] / compliance[c];
-                self.fold_add[d].push((r, value));
-                self.fold_used[d] = true;
-                self.folded[c] = true;
-                any = true;
-            }
-        }
-        for d in 0..nd {
-            if !self.fold_used[d] {
-                continue;
-            }
-            let base = a.banded(d).expect("a folded block is banded");
-            if !base.refactor_with_diagonal(&self.fold_add[d], &mut self.fold_lu[d]) {
-                self.fold_used.fill(false);
-                self.folded.fill(false);
-                return false;
-            }
-        }
-        if any {
-            self.folds += self.folded.iter().filter(|&&f| f).count() as u64;
-        }
-        any
-    }
-
-    /// Whether `pattern` touches a block changed by folding.
-    fn touches_fold(&self, a: &BlockDiagonal, pattern: &[usize]) -> bool {
-        pattern.iter().any(|&i| {
-            a.banded_block(i)
-                .is_some_and(|(d, _)| self.fold_used.get(d).copied().unwrap_or(false))
-        })
-    }
-
-    /// A_c⁻¹ĝ of `wheel` into `ainv_g[wheel]`, A_c being A with the folded wheels (not
-    /// kept for reuse: A_c changes with every update).
-    fn solve_wheel_folded(
-        &mut self,
-        a: &BlockDiagonal,
-        wheel: usize,
-        g: &[f64],
-        pattern: &[usize],
-    ) {
-        self.solve_wheel_fresh(a, wheel, g, pattern, true);
-        self.key[wheel] = SolveKey::default();
+        values.extend(self.support[wheel].iter().map(|&i| self.ainv_g[wheel][i]));
     }
 
     /// The wheels folded into a band so far ([`contact_update`], "Folding").
@@ -373,23 +306,29 @@ pub fn contact_update(
                 x[i] -= s * g_hat[wheel].as_ref()[i] * delta_tilde[c] / compliance[c];
             }
         }
-        let (used, lus) = (&work.fold_used, &work.fold_lu);
-        a.solve_in_place_replacing(x, |d| used[d].then(|| &lus[d]));
+        // The folded blocks are solved below, with the wheels that touch them.
+        let used = &work.fold_used;
+        a.solve_in_place_deferring(x, |d| used[d]);
     } else {
         a.solve_in_place(x);
     }
     let folded = |work: &CapacitanceWork, c: usize| folding && work.folded[c];
-    // A⁻¹ĝ_c (A_c⁻¹ĝ_c) on the blocks ĝ_c touches (the rest of ainv_g[wheel] is kept zero).
+    // A⁻¹ĝ_c (A_c⁻¹ĝ_c) on the blocks ĝ_c touches (the rest of ainv_g[wheel] is kept zero);
+    // the wheels touching a folded block all at once, with x's entries on the folded blocks.
+    work.batch.clear();
     for (c, &wheel) in active.iter().enumerate() {
         if folded(work, c) {
             continue;
         }
         let (g, p) = (g_hat[wheel].as_ref(), pattern[wheel].as_ref());
         if folding && work.touches_fold(a, p) {
-            work.solve_wheel_folded(a, wheel, g, p);
+            work.batch.push(wheel);
         } else {
             work.solve_wheel(a, wheel, g, p);
         }
+    }
+    if folding {
+        work.solve_wheels_folded(a, g_hat, pattern, x);
     }
     // Coupling groups: wheels touching a common block.
     let update = work.next_stamp();
