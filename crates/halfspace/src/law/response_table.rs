@@ -41,7 +41,7 @@ use crate::normcg::{NormalLoad, NormalSolver, SolverOptions};
 
 /// NormCG tolerance of the table's node solves (‖Δp‖_rms/‖p‖_rms), far below any useful
 /// `reuse_tol`.
-pub const NODE_TOL: f64 = 1e-10;
+pub const NODE_TOL: f64 = 1e-9;
 /// The table covers forces from this fraction of the design force up (below it the law
 /// solves: near first contact the relative bound of a chord cannot be met).
 pub const MIN_FORCE_FRACTION: f64 = 0.05;
@@ -227,8 +227,17 @@ impl ResponseTable {
             if failing.is_empty() || solved.len() + failing.len() > MAX_NODES {
                 break;
             }
+            let mut start = vec![0.0; grid.len()];
             for &i in &failing {
                 let d = Self::split_point(&solved, i);
+                // Start from the chord's pressure (exact when the interval holds no set
+                // change).
+                let (lo, hi) = (&solved[i], &solved[i + 1]);
+                let th = (d - lo.node.delta) / (hi.node.delta - lo.node.delta);
+                for ((s, a), b) in start.iter_mut().zip(&lo.pressure).zip(&hi.pressure) {
+                    *s = a + th * (b - a);
+                }
+                solver.set_initial_pressure(&start)?;
                 let node = solve_node(&mut solver, base_gap, d, &options)?;
                 solved.push(node);
                 solves += 1;
