@@ -338,23 +338,38 @@ impl BemLaw {
         }
         let material = *self.solver.material();
         let table = shared.get(self.grid, material, &self.base_gap)?;
-        let answer = table.answer(delta, &mut self.column_force, &mut self.pressure)?;
-        let reuse = self.reuse.as_mut()?;
-        reuse.stats.table_answers += 1;
-        reuse.stats.last_estimate = answer.estimate;
-        reuse.stats.max_estimate = reuse.stats.max_estimate.max(answer.estimate);
+        let a = table.answer(delta, &mut self.column_force, &mut self.pressure)?;
+        self.reuse.as_mut()?.stats.table_answers += 1;
+        let fields = (a.force, a.stiffness, a.energy, a.max_pressure, a.patch);
+        Some(self.answered(column_force, a.estimate, fields))
+    }
+
+    /// Records an evaluation answered without a solve (by the frozen-set model or the
+    /// response table) with the relative `estimate` of its force error, whose column forces
+    /// are in `self.column_force`: the statistics, the caller's column forces and the tangent;
+    /// returns its output from `(force, stiffness, energy, max_pressure, patch)`.
+    fn answered(
+        &mut self,
+        column_force: &mut [f64],
+        estimate: f64,
+        (force, stiffness, energy, max_pressure, patch): (f64, f64, f64, f64, (f64, f64)),
+    ) -> LawOutput {
+        if let Some(reuse) = self.reuse.as_mut() {
+            reuse.stats.last_estimate = estimate;
+            reuse.stats.max_estimate = reuse.stats.max_estimate.max(estimate);
+        }
         column_force.copy_from_slice(&self.column_force[..column_force.len()]);
-        self.last_stiffness = Some(answer.stiffness);
-        Some(LawOutput {
-            force: answer.force,
-            stiffness: answer.stiffness,
+        self.last_stiffness = Some(stiffness);
+        LawOutput {
+            force,
+            stiffness,
             tangent_fresh: true,
-            energy: answer.energy,
-            patch_length: answer.patch.0,
-            patch_width: answer.patch.1,
-            max_pressure: answer.max_pressure,
+            energy,
+            patch_length: patch.0,
+            patch_width: patch.1,
+            max_pressure,
             iterations: 0,
-        })
+        }
     }
 
     /// The frozen-set model's answer when reuse is on, a model exists and its estimate is
@@ -383,22 +398,10 @@ impl BemLaw {
         if !within || prediction.force <= 0.0 {
             return None;
         }
-        let estimate = prediction.estimate / reference;
         reuse.stats.reused += 1;
-        reuse.stats.last_estimate = estimate;
-        reuse.stats.max_estimate = reuse.stats.max_estimate.max(estimate);
-        column_force.copy_from_slice(&self.column_force[..column_force.len()]);
-        self.last_stiffness = Some(prediction.stiffness);
-        Some(LawOutput {
-            force: prediction.force,
-            stiffness: prediction.stiffness,
-            tangent_fresh: true,
-            energy: prediction.energy,
-            patch_length: prediction.patch.0,
-            patch_width: prediction.patch.1,
-            max_pressure: prediction.max_pressure,
-            iterations: 0,
-        })
+        let p = prediction;
+        let fields = (p.force, p.stiffness, p.energy, p.max_pressure, p.patch);
+        Some(self.answered(column_force, p.estimate / reference, fields))
     }
 
     /// With reuse on and a model built with the dense factor, the exact solution at `delta`
