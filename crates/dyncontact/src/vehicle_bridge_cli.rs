@@ -82,6 +82,15 @@ pub struct ContactSummary {
     /// to the force of the full solve it was reused from (0 without reuse).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_reuse_error_estimate: Option<f64>,
+    /// BEM contact with reuse only: evaluations answered by the shared response table F(δ)
+    /// (wheels on a flat, rigid, smooth track; issue #14), not counted in
+    /// `reused_evaluations`; their estimates are in `max_reuse_error_estimate`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub table_evaluations: Option<usize>,
+    /// BEM contact with reuse only: exact solves the response tables were built from (once
+    /// per table, shared by identical wheels), not counted in `full_solves`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub table_solves: Option<usize>,
 }
 
 pub use sim::train_response::{ComfortSummary, TrainSummary, VehicleMax as BogieVehicleMax};
@@ -327,6 +336,8 @@ pub fn simulate_full(
             factor_solves: solves.map(|s| s.factor_solves),
             reused_evaluations: solves.map(|s| s.reused),
             max_reuse_error_estimate: solves.map(|s| s.max_estimate),
+            table_evaluations: solves.map(|s| s.table_answers),
+            table_solves: solves.map(|s| s.table_solves),
         },
         vehicles: monitor.vehicles(),
         comfort: train
@@ -665,7 +676,7 @@ fn bench_bem_train(default_scenario: &str) -> Result<()> {
     )?;
     let s = &outcome.summary;
     println!(
-        "{:>8} {:>11} {:>12} {:>13} {:>13} {:>12} {:>13} {:>10}",
+        "{:>8} {:>11} {:>12} {:>13} {:>13} {:>12} {:>13} {:>10} {:>12} {:>12} {:>12}",
         "steps",
         "wall [s]",
         "µs/step",
@@ -673,10 +684,13 @@ fn bench_bem_train(default_scenario: &str) -> Result<()> {
         "iter/step",
         "full solves",
         "factor solves",
-        "reused"
+        "reused",
+        "table evals",
+        "table solves",
+        "max estimate"
     );
     println!(
-        "{:>8} {:>11.3} {:>12.1} {:>13.2} {:>13.2} {:>12} {:>13} {:>10}",
+        "{:>8} {:>11.3} {:>12.1} {:>13.2} {:>13.2} {:>12} {:>13} {:>10} {:>12} {:>12} {:>12.2e}",
         s.solver.steps,
         s.wall_time_s,
         1e6 * s.wall_time_s / s.solver.steps.max(1) as f64,
@@ -685,6 +699,9 @@ fn bench_bem_train(default_scenario: &str) -> Result<()> {
         s.contact.full_solves.unwrap_or(0),
         s.contact.factor_solves.unwrap_or(0),
         s.contact.reused_evaluations.unwrap_or(0),
+        s.contact.table_evaluations.unwrap_or(0),
+        s.contact.table_solves.unwrap_or(0),
+        s.contact.max_reuse_error_estimate.unwrap_or(0.0),
     );
     Ok(())
 }

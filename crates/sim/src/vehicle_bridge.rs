@@ -121,6 +121,8 @@ pub struct Simulation {
     scenario: Scenario,
     /// The contact of each wheel: a force law or the rigid constraint.
     contacts: Vec<law::ContactModel>,
+    /// The response tables shared by the BEM wheels (module [`contact`]).
+    contact_tables: contact::ContactTables,
     structure: Structure,
     stepper: StructuralStepper,
     eq: StepEquation,

@@ -1,5 +1,8 @@
 //! The boundary-element (half-space) contact law: NormCG at prescribed approach.
 
+use std::sync::Arc;
+
+use super::response_table::SharedTable;
 use super::reuse::{FrozenSet, Responses};
 use super::{ContactLaw, LawOutput, check_columns};
 use crate::error::{ContactError, positive};
@@ -83,7 +86,18 @@ pub struct BemLaw {
     column_force: Vec<f64>,
     solves: usize,
     reuse: Option<Reuse>,
+    /// The response table F(δ) of the base gap shared with identical laws (reuse only).
+    table: Option<Arc<SharedTable>>,
+    /// Consecutive evaluations without column corrections (the table is used from
+    /// [`TABLE_STREAK`] on).
+    table_streak: usize,
 }
+
+/// Consecutive evaluations without column corrections after which a law uses (and if need
+/// be builds) its shared response table: a wheel that meets a smooth rail only now and then
+/// does not pay for a table. Counted per law, so whether an evaluation is answered by the
+/// table does not depend on the order in which laws run (thread count).
+pub const TABLE_STREAK: usize = 16;
 
 /// The reuse state of a [`BemLaw`] (references.md §C8.4).
 #[derive(Debug)]
@@ -111,6 +125,9 @@ pub struct ReuseStats {
     pub max_estimate: f64,
     /// The estimate of the last evaluation in the same measure (0 when it solved).
     pub last_estimate: f64,
+    /// Evaluations answered by the shared response table F(δ) (no column corrections;
+    /// [`BemLaw::share_table`]); their estimates are in `max_estimate` too.
+    pub table_answers: usize,
 }
 
 impl BemLaw {
@@ -170,6 +187,8 @@ impl BemLaw {
             column_force: vec![0.0; grid.nx],
             solves: 0,
             reuse,
+            table: None,
+            table_streak: 0,
         })
     }
 
@@ -216,6 +235,22 @@ impl BemLaw {
         let gap =
             grid.sample(|x, y| (rw - (rw * rw - x * x).sqrt()) + (rr - (rr * rr - y * y).sqrt()));
         Self::new(grid, material, gap, options)
+    }
+
+    /// Answers evaluations without column corrections (δ only: a wheel on a flat, rigid,
+    /// smooth track) from `table`, built on first use from this law's grid, material and base
+    /// gap (`response_table` module); every law sharing it must have the same. Only with
+    /// reuse on (`reuse_tol` > 0, which should be the table's tolerance): `reuse_tol = 0`
+    /// keeps solving every evaluation.
+    pub fn share_table(&mut self, table: Arc<SharedTable>) {
+        if self.reuse.is_some() {
+            self.table = Some(table);
+        }
+    }
+
+    /// The shared response table, if one is attached.
+    pub fn table(&self) -> Option<&Arc<SharedTable>> {
+        self.table.as_ref()
     }
 
     /// The grid (x along the rolling direction, centred on the contact point).
@@ -284,6 +319,59 @@ impl BemLaw {
 }
 
 impl BemLaw {
+    /// The shared table's answer when one is attached, the column corrections are all zero
+    /// and δ lies in an interval the table uses (`response_table` module).
+    fn try_table(
+        &mut self,
+        delta: f64,
+        column_gap: &[f64],
+        column_force: &mut [f64],
+    ) -> Option<LawOutput> {
+        let shared = self.table.as_ref()?;
+        if column_gap.iter().any(|&c| c != 0.0) {
+            self.table_streak = 0;
+            return None;
+        }
+        self.table_streak += 1;
+        if self.table_streak < TABLE_STREAK {
+            return None;
+        }
+        let material = *self.solver.material();
+        let table = shared.get(self.grid, material, &self.base_gap)?;
+        let a = table.answer(delta, &mut self.column_force, &mut self.pressure)?;
+        self.reuse.as_mut()?.stats.table_answers += 1;
+        let fields = (a.force, a.stiffness, a.energy, a.max_pressure, a.patch);
+        Some(self.answered(column_force, a.estimate, fields))
+    }
+
+    /// Records an evaluation answered without a solve (by the frozen-set model or the
+    /// response table) with the relative `estimate` of its force error, whose column forces
+    /// are in `self.column_force`: the statistics, the caller's column forces and the tangent;
+    /// returns its output from `(force, stiffness, energy, max_pressure, patch)`.
+    fn answered(
+        &mut self,
+        column_force: &mut [f64],
+        estimate: f64,
+        (force, stiffness, energy, max_pressure, patch): (f64, f64, f64, f64, (f64, f64)),
+    ) -> LawOutput {
+        if let Some(reuse) = self.reuse.as_mut() {
+            reuse.stats.last_estimate = estimate;
+            reuse.stats.max_estimate = reuse.stats.max_estimate.max(estimate);
+        }
+        column_force.copy_from_slice(&self.column_force[..column_force.len()]);
+        self.last_stiffness = Some(stiffness);
+        LawOutput {
+            force,
+            stiffness,
+            tangent_fresh: true,
+            energy,
+            patch_length: patch.0,
+            patch_width: patch.1,
+            max_pressure,
+            iterations: 0,
+        }
+    }
+
     /// The frozen-set model's answer when reuse is on, a model exists and its estimate is
     /// within `reuse_tol` (references.md §C8.4).
     fn try_reuse(
@@ -310,22 +398,10 @@ impl BemLaw {
         if !within || prediction.force <= 0.0 {
             return None;
         }
-        let estimate = prediction.estimate / reference;
         reuse.stats.reused += 1;
-        reuse.stats.last_estimate = estimate;
-        reuse.stats.max_estimate = reuse.stats.max_estimate.max(estimate);
-        column_force.copy_from_slice(&self.column_force[..column_force.len()]);
-        self.last_stiffness = Some(prediction.stiffness);
-        Some(LawOutput {
-            force: prediction.force,
-            stiffness: prediction.stiffness,
-            tangent_fresh: true,
-            energy: prediction.energy,
-            patch_length: prediction.patch.0,
-            patch_width: prediction.patch.1,
-            max_pressure: prediction.max_pressure,
-            iterations: 0,
-        })
+        let p = prediction;
+        let fields = (p.force, p.stiffness, p.energy, p.max_pressure, p.patch);
+        Some(self.answered(column_force, p.estimate / reference, fields))
     }
 
     /// With reuse on and a model built with the dense factor, the exact solution at `delta`
@@ -432,6 +508,10 @@ impl ContactLaw for BemLaw {
                 tangent_fresh: true,
                 ..LawOutput::default()
             };
+            self.last = Some((delta, out));
+            return Ok(out);
+        }
+        if let Some(out) = self.try_table(delta, column_gap, column_force) {
             self.last = Some((delta, out));
             return Ok(out);
         }

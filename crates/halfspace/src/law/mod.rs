@@ -54,15 +54,17 @@ mod bem;
 mod damped;
 mod hertz;
 mod hertz_line;
+mod response_table;
 mod reuse;
 mod rigid;
 mod set_factor;
 mod set_solve;
 
-pub use bem::{BemLaw, BemOptions, ReuseStats, TangentPolicy};
+pub use bem::{BemLaw, BemOptions, ReuseStats, TABLE_STREAK, TangentPolicy};
 pub use damped::{Damped, DampingModel};
 pub use hertz::HertzPoint;
 pub use hertz_line::HertzLine;
+pub use response_table::{ResponseTable, SharedTable, TableAnswer};
 pub use rigid::RigidConstraint;
 
 use crate::error::ContactError;

@@ -228,8 +228,14 @@ impl Simulation {
 
         // Contact laws.
         let mut contacts = Vec::with_capacity(static_loads.len());
+        let mut contact_tables = super::contact::ContactTables::default();
         for &load in &static_loads {
-            contacts.push(wheel_contact(&scenario.contact, &scenario.geometry, load)?);
+            contacts.push(wheel_contact(
+                &scenario.contact,
+                &scenario.geometry,
+                load,
+                &mut contact_tables,
+            )?);
         }
 
         // Static start.
@@ -351,6 +357,7 @@ impl Simulation {
         let rigid = super::rigid::RigidWork::new(any_rigid, nw, m, n);
         let mut sim = Self {
             contacts,
+            contact_tables,
             structure,
             stepper,
             eq: StepEquation::default(),

@@ -35,11 +35,12 @@
 //! update, and `x` formed once at the end.
 //!
 //! It applies to bogie vehicles ([`MAX_DOFS`] DOFs, [`MAX_WHEELS`] wheels: fixed-size kernels)
-//! with compliant point contacts (Hertz), under the conditions of module `resting`.
+//! with compliant contacts (Hertz, or BEM, whose column forces load no mode off the span),
+//! under the conditions of module `resting`.
 
 use halfspace::law::{ContactModel as LawModel, LawOutput};
 
-use super::contact::{is_point, wheel_error};
+use super::contact::wheel_error;
 use super::linalg::small_solve_in_place;
 use super::step::StepFailure;
 use super::vehicles::VehicleDofs;
@@ -51,13 +52,14 @@ pub(super) const MAX_DOFS: usize = 10;
 pub(super) const MAX_WHEELS: usize = 4;
 
 /// Whether vehicle `veh` can be solved on its own when off the span: a bogie vehicle, every
-/// wheel in compliant point contact.
+/// wheel in compliant contact (a point contact, or a BEM patch: off the span its column
+/// forces load no mode, so only the wheel's total force enters).
 pub(super) fn applies(veh: &VehicleDofs, contacts: &[LawModel]) -> bool {
     let wheels = veh.dofs.len() - veh.own().len();
     veh.dofs.len() == MAX_DOFS
         && wheels == MAX_WHEELS
         && (veh.first_wheel..veh.first_wheel + wheels)
-            .all(|k| matches!(contacts[k], LawModel::Law(_)) && is_point(&contacts[k]))
+            .all(|k| matches!(contacts[k], LawModel::Law(_)))
 }
 
 /// The vehicle's own DOFs (body and bogies); its wheels' DOFs follow them.
