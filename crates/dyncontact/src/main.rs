@@ -8,6 +8,7 @@
 mod ball_drop_cli;
 mod ball_drop_summary;
 mod bench;
+mod bench_coupling;
 mod bench_small_grids;
 mod bench_tamaas;
 mod bench_tangential;
@@ -329,7 +330,7 @@ fn run_cli() -> Result<()> {
             BenchTarget::Contact => bench::contact(max_n),
             BenchTarget::Beam => bench::beam(),
             BenchTarget::Integrators => ball_drop_cli::bench_integrators(1e-6),
-            BenchTarget::Coupling => vehicle_bridge_cli::bench(vehicle_bridge_cli::DEFAULT),
+            BenchTarget::Coupling => bench_coupling::bench(vehicle_bridge_cli::DEFAULT),
             BenchTarget::Tangential => bench_tangential::tangential(),
             BenchTarget::Sweep => bench::sweep(),
             BenchTarget::Trains => bench::trains(),
