@@ -302,7 +302,8 @@ def run(scenario: Case) -> Dict[str, Any]:
     ``summary.json`` (``max_midspan_deflection`` [m], ``max_midspan_acceleration`` [m/s²],
     ``dynamic_amplification``, ``contact`` (``max_force``, ``min_force`` [N], ``max_pressure``
     [Pa], ``loss_of_contact_events``, ``max_unloading_ratio``; BEM contact also
-    ``full_solves``, ``factor_solves``, ``reused_evaluations``, ``max_reuse_error_estimate``), ``vehicle``, ``solver``,
+    ``full_solves``, ``factor_solves``, ``reused_evaluations``, ``max_reuse_error_estimate``,
+    ``table_evaluations``, ``table_solves``), ``vehicle``, ``solver``,
     ``warnings``, and for trains ``vehicles`` (per bogie or articulated vehicle
     ``max_body_acceleration`` [m/s²], ``max_body_pitch_acceleration`` [rad/s²],
     ``max_bogie_acceleration`` [m/s²]), ``train`` (``name``, ``axles``, ``length`` [m],

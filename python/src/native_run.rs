@@ -300,6 +300,8 @@ fn run_vehicle_bridge(text: &str, base: &str, stop: &std::sync::atomic::AtomicBo
                     "factor_solves": c.factor_solves,
                     "reused_evaluations": c.reused,
                     "max_reuse_error_estimate": c.max_estimate,
+                    "table_evaluations": c.table_answers,
+                    "table_solves": c.table_solves,
                 })),
             })
             .to_string(),

@@ -32,7 +32,8 @@ def test_vehicle_bridge_run_equals_the_cli(name, tmp_path):
     for key in ("max_force", "min_force", "loss_of_contact_events", "max_unloading_ratio"):
         assert s["contact"][key] == cli["contact"][key], key
     # BEM contact only: the solve counts of the reuse ([contact] reuse_tol).
-    for key in ("full_solves", "reused_evaluations", "max_reuse_error_estimate"):
+    for key in ("full_solves", "factor_solves", "reused_evaluations", "max_reuse_error_estimate",
+                "table_evaluations", "table_solves"):
         assert (key in s["contact"]) == (key in cli["contact"]), key
         if key in cli["contact"]:
             assert s["contact"][key] == cli["contact"][key], key
