@@ -142,6 +142,9 @@ pub(super) struct TrackLayer {
     /// Contact forces of the last accepted step and the rail points they acted on.
     forces: Vec<f64>,
     points: Vec<RailPoint>,
+    /// The rail points of the step being solved (adopted as `points` when it is accepted: a
+    /// failed attempt, retried in halves, keeps the old load where it acted).
+    next_points: Vec<RailPoint>,
     /// Work space.
     q_pred: Vec<f64>,
     v_pred: Vec<f64>,
@@ -549,6 +552,7 @@ impl TrackLayer {
             ordering,
             other_factors: Vec::new(),
             forces: sim.static_loads.clone(),
+            next_points: points.clone(),
             points,
             q_pred: vec![0.0; n],
             v_pred: vec![0.0; n],

@@ -369,7 +369,7 @@ impl Simulation {
             ];
             l.factor
                 .forward_sparse_reach(&v, &mut l.y[k], &mut l.reach[k]);
-            l.points[k] = pt;
+            l.next_points[k] = pt;
             self.work.r_at_wheel[k] = self.scenario.irregularity.height(x);
             delta0[k] = dot_on(l.reach[k].nodes(), &l.y[k], &l.r) + self.work.r_at_wheel[k];
         }
@@ -399,6 +399,7 @@ impl Simulation {
         };
         self.stats.contact_iterations += l.newton.law_iterations;
         let iterations = solved?;
+        l.points.copy_from_slice(&l.next_points);
         for k in 0..nw {
             let f = s * forces[k];
             for &i in l.reach[k].nodes() {
