@@ -36,6 +36,24 @@ impl Rng {
     }
 }
 
+/// The grid (n × n over 2.1 × the Hertz semi-axes) and the normal solution of `shape` pressed
+/// with `fn_` \[N\] (the NormCG solve the tangential solvers start from), and Hertz's solution.
+fn hertzian_case(
+    shape: &GapShape,
+    m: Material,
+    fn_: f64,
+    n: usize,
+) -> (Grid, NormalSolution, Hertz) {
+    let h = shape.hertz(&m, NormalLoad::Force(fn_)).unwrap();
+    let grid = Grid::centred(n, n, 2.1 * h.a / n as f64, 2.1 * h.b / n as f64, 0.0, 0.0).unwrap();
+    let gap = shape.sample(&grid).unwrap();
+    let normal = NormalSolver::new(grid, m)
+        .unwrap()
+        .solve(&gap, NormalLoad::Force(fn_), &SolverOptions::default())
+        .unwrap();
+    (grid, normal, h)
+}
+
 /// Operator products of one case: line preconditioner from zero, Jacobi from zero, and the
 /// default (nested start) on the fine grid.
 struct Products {
@@ -55,13 +73,7 @@ fn compare(case: usize, n: usize, rng: &mut Rng) -> Products {
     };
     let fn_ = rng.range(20e3, 150e3);
     let mu = rng.range(0.1, 0.5);
-    let h = shape.hertz(&m, NormalLoad::Force(fn_)).unwrap();
-    let grid = Grid::centred(n, n, 2.1 * h.a / n as f64, 2.1 * h.b / n as f64, 0.0, 0.0).unwrap();
-    let gap = shape.sample(&grid).unwrap();
-    let normal = NormalSolver::new(grid, m)
-        .unwrap()
-        .solve(&gap, NormalLoad::Force(fn_), &SolverOptions::default())
-        .unwrap();
+    let (grid, normal, h) = hertzian_case(&shape, m, fn_, n);
     // Creepages up to about 0.8 μ a A: for tractcurv (μ = 0.3) 1.5e-3, where F_x reaches
     // 0.8 μ F_n; most cases mix adhesion and slip.
     let sat = 0.8 * mu * h.a * a_curv;
@@ -244,13 +256,7 @@ fn iteration_limit_falls_back_and_reports_non_convergence() {
         a: 0.8,
         b: 0.281417,
     };
-    let h = shape.hertz(&m, NormalLoad::Force(106.7e3)).unwrap();
-    let grid = Grid::centred(24, 24, 2.1 * h.a / 24.0, 2.1 * h.b / 24.0, 0.0, 0.0).unwrap();
-    let gap = shape.sample(&grid).unwrap();
-    let normal = NormalSolver::new(grid, m)
-        .unwrap()
-        .solve(&gap, NormalLoad::Force(106.7e3), &SolverOptions::default())
-        .unwrap();
+    let (grid, normal, _) = hertzian_case(&shape, m, 106.7e3, 24);
     let load = RollingLoad::Creepages(Creepages {
         xi: 1e-3,
         eta: 0.0,
@@ -279,9 +285,9 @@ fn iteration_limit_falls_back_and_reports_non_convergence() {
     assert!(!s.steady_fallback && s.iterations < 20, "{}", s.iterations);
 }
 
-/// Dissimilar materials (K ≠ 0, aluminium on steel): the pressure's tangential displacement
+/// Dissimilar materials (K ≠ 0, aluminium on steel): the normal.pressure's tangential displacement
 /// enters W on every level of the nested start (each coarse level computes its own from the
-/// restricted pressure); the result equals the solve from zero tractions and the
+/// restricted normal.pressure); the result equals the solve from zero tractions and the
 /// Gauss–Seidel reference within the tolerance of the module documentation.
 #[test]
 fn nested_start_with_dissimilar_materials_equals_the_solve_from_zero() {
@@ -297,14 +303,7 @@ fn nested_start_with_dissimilar_materials_equals_the_solve_from_zero() {
     };
     let fn_ = 60e3;
     let mu = 0.3;
-    let h = shape.hertz(&m, NormalLoad::Force(fn_)).unwrap();
-    let n = 48;
-    let grid = Grid::centred(n, n, 2.1 * h.a / n as f64, 2.1 * h.b / n as f64, 0.0, 0.0).unwrap();
-    let gap = shape.sample(&grid).unwrap();
-    let normal = NormalSolver::new(grid, m)
-        .unwrap()
-        .solve(&gap, NormalLoad::Force(fn_), &SolverOptions::default())
-        .unwrap();
+    let (grid, normal, _) = hertzian_case(&shape, m, fn_, 48);
     let load = RollingLoad::Creepages(Creepages {
         xi: 5e-4,
         eta: 1e-4,
@@ -351,15 +350,8 @@ fn a_cold_start_ignores_the_previous_solution() {
     let shape = GapShape::Quadratic { a: 0.8, b: 1.2 };
     let fn_ = 80e3;
     let mu = 0.3;
-    let h = shape.hertz(&m, NormalLoad::Force(fn_)).unwrap();
     for n in [24, 48] {
-        let grid =
-            Grid::centred(n, n, 2.1 * h.a / n as f64, 2.1 * h.b / n as f64, 0.0, 0.0).unwrap();
-        let gap = shape.sample(&grid).unwrap();
-        let normal = NormalSolver::new(grid, m)
-            .unwrap()
-            .solve(&gap, NormalLoad::Force(fn_), &SolverOptions::default())
-            .unwrap();
+        let (grid, normal, _) = hertzian_case(&shape, m, fn_, n);
         let first = RollingLoad::Creepages(Creepages {
             xi: -1.2e-3,
             eta: 0.4e-3,

@@ -54,8 +54,14 @@ fn ballasted_modulus(d: f64) -> f64 {
     1.0 / (1.0 / 6.5e7 + 1.0 / 1.3775e8 + 1.0 / 7.75e7) / d
 }
 
-/// Contact-force history of a run (every step).
+/// Contact-force history of a run (every step) with the static wheel load.
 fn forces(text: &str) -> (f64, Vec<f64>) {
+    let (weight, out, _) = forces_and_failures(text);
+    (weight, out)
+}
+
+/// [`forces`] and the number of failed step attempts (retried in halves).
+fn forces_and_failures(text: &str) -> (f64, Vec<f64>, usize) {
     let mut sim = simulation(text);
     let weight = sim.static_loads()[0];
     let mut out = vec![sim.wheels()[0].contact.force];
@@ -63,7 +69,15 @@ fn forces(text: &str) -> (f64, Vec<f64>) {
         sim.step().unwrap();
         out.push(sim.wheels()[0].contact.force);
     }
-    (weight, out)
+    (weight, out, sim.stats().failed_steps)
+}
+
+/// max_i |a_i − b_(stride·i)| (b sampled every `stride` steps: a run at Δt/stride).
+fn largest_difference(a: &[f64], b: &[f64], stride: usize) -> f64 {
+    a.iter()
+        .zip(b.iter().step_by(stride))
+        .map(|(x, y)| (x - y).abs())
+        .fold(0.0, f64::max)
 }
 
 fn with_contact(contact: &str, duration: f64) -> String {
@@ -96,12 +110,7 @@ fn bem_on_the_track_converges_to_hertz() {
         for grid in [12, 24] {
             let (_, bem) = forces(&with_method(&format!("model = \"bem\"\ngrid = {grid}")));
             assert_eq!(bem.len(), hertz.len());
-            let d = hertz
-                .iter()
-                .zip(&bem)
-                .map(|(h, b)| (h - b).abs())
-                .fold(0.0, f64::max)
-                / weight;
+            let d = largest_difference(&hertz, &bem, 1) / weight;
             diffs.push(d);
         }
         println!(
@@ -580,12 +589,7 @@ fn bem_over_a_dip_runs_with_the_defaults() {
         let (weight, bem) = forces(&over_dip("model = \"bem\""));
         let (_, hertz) = forces(&over_dip("model = \"hertz\""));
         let peak = hertz.iter().copied().fold(0.0, f64::max);
-        let d = hertz
-            .iter()
-            .zip(&bem)
-            .map(|(h, b)| (h - b).abs())
-            .fold(0.0, f64::max)
-            / peak;
+        let d = largest_difference(&hertz, &bem, 1) / peak;
         println!(
             "BEM over a 1 mm × {length} m dip at 50 m/s: peak force {peak:.0} N (static {weight:.0} N), largest difference from Hertz / peak {d:.3e}"
         );
@@ -624,26 +628,11 @@ fn a_failed_track_step_is_retried_as_two_half_steps() {
                 + "\n[irregularity]\nkind = \"dip\"\nposition = -7.5\nlength = 0.5\ndepth = 0.003\n"
                 + extra
         };
-        let run = |text: &str| {
-            let mut sim = simulation(text);
-            let mut out = vec![sim.wheels()[0].contact.force];
-            for _ in 0..sim.planned_steps() {
-                sim.step().unwrap();
-                out.push(sim.wheels()[0].contact.force);
-            }
-            (out, sim.stats().failed_steps)
-        };
-        let (reference, failed_ref) = run(&over_dip(""));
-        let (halved, failed) = run(&over_dip("[coupling]\nmax_iter = 2\n"));
-        let (fine, _) = run(&over_dip("").replace("dt = 1e-4", "dt = 1.25e-5"));
+        let (_, reference, failed_ref) = forces_and_failures(&over_dip(""));
+        let (_, halved, failed) = forces_and_failures(&over_dip("[coupling]\nmax_iter = 2\n"));
+        let (_, fine, _) = forces_and_failures(&over_dip("").replace("dt = 1e-4", "dt = 1.25e-5"));
         let peak = reference.iter().copied().fold(0.0, f64::max);
-        let largest = |a: &[f64], b: &[f64], stride: usize| {
-            a.iter()
-                .zip(b.iter().step_by(stride))
-                .map(|(x, y)| (x - y).abs())
-                .fold(0.0, f64::max)
-                / peak
-        };
+        let largest = |a: &[f64], b: &[f64], stride: usize| largest_difference(a, b, stride) / peak;
         let d = largest(&reference, &halved, 1);
         let d_dt = largest(&reference, &fine, 8);
         let d_h = largest(&halved, &fine, 8);

@@ -120,6 +120,23 @@ fn run_with(text: &str, reuse_tol: f64, detach: bool) -> Run {
     }
 }
 
+/// The largest difference of every wheel's force at every step between `run` and its
+/// `reference`, relative to the reference's peak force.
+fn force_history_difference(reference: &Run, run: &Run) -> f64 {
+    let peak = reference
+        .forces
+        .iter()
+        .flatten()
+        .fold(0.0_f64, |m, f| m.max(f.abs()));
+    reference
+        .forces
+        .iter()
+        .zip(&run.forces)
+        .flat_map(|(a, b)| a.iter().zip(b).map(|(x, y)| (x - y).abs()))
+        .fold(0.0_f64, f64::max)
+        / peak
+}
+
 /// Runs `text` with and without reuse and checks the differences against `tol` (relative to
 /// the peaks) and the estimate; returns (measured force difference, estimate, full solves,
 /// reused evaluations) for the message.
@@ -128,18 +145,7 @@ fn compare(name: &str, text: &str, reuse_tol: f64, tol: f64) -> (Run, Run) {
     let reused = run(text, reuse_tol);
     assert_eq!(exact.solves.reused, 0, "{name}: reuse_tol = 0 reuses");
     assert_eq!(exact.forces.len(), reused.forces.len());
-    let peak = exact
-        .forces
-        .iter()
-        .flatten()
-        .fold(0.0_f64, |m, f| m.max(f.abs()));
-    let force_diff = exact
-        .forces
-        .iter()
-        .zip(&reused.forces)
-        .flat_map(|(a, b)| a.iter().zip(b).map(|(x, y)| (x - y).abs()))
-        .fold(0.0_f64, f64::max)
-        / peak;
+    let force_diff = force_history_difference(&exact, &reused);
     let deflection = (reused.max_deflection / exact.max_deflection - 1.0).abs();
     let acceleration = (reused.max_acceleration / exact.max_acceleration - 1.0).abs();
     let s = reused.solves;
@@ -209,18 +215,7 @@ fn detached_bem_car_equals_the_coupled_step() {
     let detached = run_with(&two_cars, 0.0, true);
     let coupled = run_with(&two_cars, 0.0, false);
     assert!(detached.detached_steps > 100 && coupled.detached_steps == 0);
-    let peak = coupled
-        .forces
-        .iter()
-        .flatten()
-        .fold(0.0_f64, |m, f| m.max(f.abs()));
-    let diff = coupled
-        .forces
-        .iter()
-        .zip(&detached.forces)
-        .flat_map(|(a, b)| a.iter().zip(b).map(|(x, y)| (x - y).abs()))
-        .fold(0.0_f64, f64::max)
-        / peak;
+    let diff = force_history_difference(&coupled, &detached);
     let deflection = (detached.max_deflection / coupled.max_deflection - 1.0).abs();
     eprintln!("detached vs coupled BEM: force history {diff:.3e}, max deflection {deflection:.3e}");
     assert!(
