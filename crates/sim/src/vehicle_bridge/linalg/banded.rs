@@ -21,7 +21,7 @@
 /// Relative agreement required between the banded solve and the dense inverse.
 const ACCEPT: f64 = 1e-10;
 
-/// Right-hand sides solved together by [`BandedLu::solve_many`] (the wheels of a rake on a
+/// Right-hand sides solved together by [`BandedLu::solve_interleaved`] (the wheels of a rake on a
 /// span are usually fewer).
 pub const MANY: usize = 8;
 
@@ -236,33 +236,6 @@ impl BandedLu {
         }
     }
 
-    /// `x_r ← B⁻¹ x_r` for the `nr` block-local right-hand sides `xs` (row r at
-    /// `r m .. (r + 1) m`, block order), in one pass over the band per group of up to
-    /// [`MANY`] of them: the same operations in the same order as [`Self::solve`] on each
-    /// (bit for bit), with the independent sums of the right-hand sides interleaved, so that a
-    /// row's substitutions do not wait on each other (one solve is a chain of dependent
-    /// multiply–adds through all m rows, bound by their latency). `buf` (length ≥ [`MANY`] m)
-    /// is scratch.
-    pub fn solve_many(&self, xs: &mut [f64], nr: usize, buf: &mut [f64]) {
-        let m = self.order.len();
-        for group in xs[..nr * m].chunks_mut(MANY * m) {
-            let g = group.len() / m;
-            let y = &mut buf[..g * m];
-            // Band order, interleaved: y[k g + r].
-            for (r, x) in group.chunks_exact(m).enumerate() {
-                for (k, &o) in self.order.iter().enumerate() {
-                    y[k * g + r] = x[o];
-                }
-            }
-            self.solve_interleaved(y, g);
-            for (r, x) in group.chunks_exact_mut(m).enumerate() {
-                for (k, &o) in self.order.iter().enumerate() {
-                    x[o] = y[k * g + r];
-                }
-            }
-        }
-    }
-
     /// The block position of each band position: right-hand sides gathered in this order
     /// (`y[k g + r]` = right-hand side r at block position `order()[k]`) suit
     /// [`Self::solve_interleaved`].
@@ -271,7 +244,10 @@ impl BandedLu {
     }
 
     /// `y_r ← B⁻¹ y_r` for `g` ≤ [`MANY`] right-hand sides in band order, interleaved
-    /// (entry `k g + r`): the substitutions of [`Self::solve_many`] without its gathering.
+    /// (entry `k g + r`, gathered by [`Self::order`]): the same operations in the same order
+    /// as [`Self::solve`] on each (bit for bit), with the independent sums of the right-hand
+    /// sides interleaved, so that a row's substitutions do not wait on each other (one solve is
+    /// a chain of dependent multiply–adds through all m rows, bound by their latency).
     pub fn solve_interleaved(&self, y: &mut [f64], g: usize) {
         match g {
             1 => self.substitute_many::<1>(y),
@@ -521,6 +497,29 @@ mod tests {
         a
     }
 
+    /// `x_r ← B⁻¹ x_r` for the `nr` block-local right-hand sides `xs` (row r at
+    /// `r m .. (r + 1) m`), gathered into band order in groups of up to [`MANY`] and solved by
+    /// [`BandedLu::solve_interleaved`] (as `low_rank::folding` does); `buf` (length ≥ [`MANY`] m).
+    fn solve_many(lu: &BandedLu, xs: &mut [f64], nr: usize, buf: &mut [f64]) {
+        let order = lu.order();
+        let m = order.len();
+        for group in xs[..nr * m].chunks_mut(MANY * m) {
+            let g = group.len() / m;
+            let y = &mut buf[..g * m];
+            for (r, x) in group.chunks_exact(m).enumerate() {
+                for (k, &o) in order.iter().enumerate() {
+                    y[k * g + r] = x[o];
+                }
+            }
+            lu.solve_interleaved(y, g);
+            for (r, x) in group.chunks_exact_mut(m).enumerate() {
+                for (k, &o) in order.iter().enumerate() {
+                    x[o] = y[k * g + r];
+                }
+            }
+        }
+    }
+
     /// Many right-hand sides solved together equal the solves one by one bit for bit:
     /// unit vectors at varied positions (a wheel's right-hand side), vectors non-zero from
     /// varied positions on, a zero vector, 1 … 19 of them (groups of [`MANY`] and a
@@ -552,7 +551,7 @@ mod tests {
                     lu.solve(x, &mut buf);
                 }
                 let mut buf = vec![0.0; MANY * m];
-                lu.solve_many(&mut xs, nr, &mut buf);
+                solve_many(&lu, &mut xs, nr, &mut buf);
                 for (i, (a, b)) in xs.iter().zip(&one).enumerate() {
                     assert_eq!(
                         a.to_bits(),
