@@ -91,8 +91,8 @@ pub fn sweep_merge<'py>(py: Python<'py>, shards: Vec<String>) -> PyResult<Bound<
         .map_err(|e| SolverError::new_err(format!("sweep summary: {e}")))?;
     let d = PyDict::new(py);
     d.set_item("summary_json", PyString::new(py, &json))?;
-    for (name, column) in sim::sweep::summary::PASSAGE_COLUMNS.iter().zip(table) {
-        d.set_item(*name, PyArray1::from_vec(py, column))?;
+    for (name, column) in table {
+        d.set_item(name, PyArray1::from_vec(py, column))?;
     }
     Ok(d)
 }

@@ -188,9 +188,9 @@ fn write_csv(
     passages: &[Passage],
 ) -> Result<()> {
     // One row per (train, speed, output point); the train as its index (names in summary.json).
-    let columns = sim::sweep::summary::passage_table(spec, passages);
-    let rows = (0..columns[0].len()).map(|r| columns.iter().map(|c| c[r]).collect::<Vec<f64>>());
-    let header = sim::sweep::summary::PASSAGE_COLUMNS;
+    let table = sim::sweep::summary::passage_table(spec, passages);
+    let rows = (0..table[0].1.len()).map(|r| table.iter().map(|c| c.1[r]).collect::<Vec<f64>>());
+    let header: Vec<&str> = table.iter().map(|c| c.0).collect();
     output::write_csv(&run_out.path("sweep.csv"), &header, rows)
 }
 
@@ -221,6 +221,32 @@ fn print_summary(config: &SweepConfig, s: &SweepSummary, wall: f64) {
             t.speed_at_max_deflection,
             t.dynamic_factor
         );
+    }
+    let with_vehicles: Vec<_> = s
+        .trains
+        .iter()
+        .filter_map(|t| t.vehicles.as_ref().map(|v| (&t.name, v)))
+        .collect();
+    if !with_vehicles.is_empty() {
+        println!(
+            "  {:<12} {:>14} {:>10} {:>14} {:>14} {:>10}",
+            "train", "unloading", "at m/s", "lost contact", "body m/s^2", "at m/s"
+        );
+        for (name, v) in with_vehicles {
+            println!(
+                "  {:<12} {:>14.4} {:>10.2} {:>14} {:>14.4} {:>10.2}",
+                name,
+                v.max_unloading_ratio,
+                v.speed_at_max_unloading_ratio,
+                format!(
+                    "{} at {} v",
+                    v.loss_of_contact_events,
+                    v.speeds_with_loss_of_contact.len()
+                ),
+                v.max_body_acceleration,
+                v.speed_at_max_body_acceleration
+            );
+        }
     }
     let c = &s.checks;
     println!(

@@ -1034,6 +1034,12 @@ fn interaction_sweep_example_matches_the_docs() {
             q("trains/1/max_deflection", 12.319e-3, 0.001e-3),
             q("trains/1/dynamic_factor", 5.196, 0.001),
             q("checks/governing_speed", 90.0, 1e-9),
+            n("trains/1/loss_of_contact_events", 12.0),
+            q("trains/1/max_unloading_ratio", 1.0, 0.0),
+            q("trains/1/speeds_with_loss_of_contact/0", 90.0, 1e-9),
+            n("trains/0/loss_of_contact_events", 0.0),
+            q("trains/0/max_unloading_ratio", 0.365, 0.001),
+            q("trains/0/max_body_acceleration", 0.140, 0.001),
         ],
         "docs/sweep.md",
     );

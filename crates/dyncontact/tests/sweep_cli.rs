@@ -34,17 +34,22 @@ fn summary_without_wall_time(dir: &std::path::Path) -> serde_json::Value {
     v
 }
 
-#[test]
-fn shards_merge_into_the_outputs_of_one_run() {
-    let dir = tempfile::tempdir().unwrap();
-    let file = write(dir.path(), "sweep.toml", SWEEP);
-    let whole = dir.path().join("whole");
+/// Runs `text` whole and as `shards` shards merged (in reverse order) in `dir`; checks that
+/// the merged summary and CSV equal the whole run's; returns the whole run's directory and
+/// the shards' directories.
+fn whole_and_merged(
+    dir: &std::path::Path,
+    text: &str,
+    shards: usize,
+) -> (std::path::PathBuf, Vec<std::path::PathBuf>) {
+    let file = write(dir, "sweep.toml", text);
+    let whole = dir.join("whole");
     let o = dyncontact(&["sweep", &file, "--out", whole.to_str().unwrap()]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let mut shard_dirs = Vec::new();
-    for k in 1..=3 {
-        let d = dir.path().join(format!("shard{k}"));
-        let shard = format!("{k}/3");
+    for k in 1..=shards {
+        let d = dir.join(format!("shard{k}"));
+        let shard = format!("{k}/{shards}");
         let o = dyncontact(&[
             "sweep",
             &file,
@@ -57,7 +62,7 @@ fn shards_merge_into_the_outputs_of_one_run() {
         assert!(d.join("shard.json").exists() && !d.join("summary.json").exists());
         shard_dirs.push(d);
     }
-    let merged = dir.path().join("merged");
+    let merged = dir.join("merged");
     let mut args = vec!["sweep-merge"];
     // Any order of the shards.
     for d in shard_dirs.iter().rev() {
@@ -70,8 +75,18 @@ fn shards_merge_into_the_outputs_of_one_run() {
         summary_without_wall_time(&whole),
         summary_without_wall_time(&merged)
     );
-    let csv = |d: &std::path::Path| std::fs::read(d.join("sweep.csv")).unwrap();
     assert_eq!(csv(&whole), csv(&merged), "sweep.csv must be bit-identical");
+    (whole, shard_dirs)
+}
+
+fn csv(d: &std::path::Path) -> Vec<u8> {
+    std::fs::read(d.join("sweep.csv")).unwrap()
+}
+
+#[test]
+fn shards_merge_into_the_outputs_of_one_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let (whole, shard_dirs) = whole_and_merged(dir.path(), SWEEP, 3);
     let s = summary_without_wall_time(&whole);
     assert_eq!(s["runs"], 27);
     assert_eq!(s["trains"].as_array().unwrap().len(), 3);
@@ -98,6 +113,62 @@ fn shards_merge_into_the_outputs_of_one_run() {
     ]);
     assert_eq!(code(&o), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("shard 2/3 is missing"));
+}
+
+#[test]
+fn interaction_shards_merge_with_the_vehicles_peaks() {
+    // The interaction model's passages carry the wheels' unloading, contact losses and the
+    // car bodies' acceleration; shards store them exactly, so the merge equals the whole run.
+    let text = r#"kind = "sweep"
+[bridge]
+length = 20.0
+EI = 1.95e10
+mass_per_length = 12000.0
+supports = "simply_supported"
+modes = 3
+damping_ratio = 0.01
+[trains]
+names = ["AVE-S103-car", "double-deck-coach"]
+model = "interaction"
+[contact]
+model = "hertz"
+[speeds]
+list = [40.0, 60.0]
+"#;
+    let dir = tempfile::tempdir().unwrap();
+    let (whole, _) = whole_and_merged(dir.path(), text, 2);
+    let s = summary_without_wall_time(&whole);
+    for t in s["trains"].as_array().unwrap() {
+        let ratio = t["max_unloading_ratio"].as_f64().unwrap();
+        assert!(ratio > 0.0 && ratio < 1.0, "{t}");
+        assert_eq!(t["loss_of_contact_events"], 0, "{t}");
+        assert!(t["min_contact_force"].as_f64().unwrap() > 0.0, "{t}");
+        assert!(t["max_body_acceleration"].as_f64().unwrap() > 0.0, "{t}");
+        assert!(t["comfort_level"].is_string(), "{t}");
+    }
+    assert_eq!(
+        s["envelope"]["max_unloading_ratio"]
+            .as_array()
+            .unwrap()
+            .len(),
+        2
+    );
+    let text = String::from_utf8(csv(&whole)).unwrap();
+    let header = text.lines().next().unwrap();
+    assert!(
+        header.ends_with(
+            "dynamic_factor,max_unloading_ratio,min_contact_force_n,loss_of_contact_events,max_body_acceleration_m_s2"
+        ),
+        "{header}"
+    );
+    // The moving-force model keeps its columns and keys.
+    let moving = tempfile::tempdir().unwrap();
+    let (whole, _) = whole_and_merged(moving.path(), SWEEP, 2);
+    let header = String::from_utf8(csv(&whole)).unwrap();
+    assert!(header.lines().next().unwrap().ends_with(",dynamic_factor"));
+    let s = summary_without_wall_time(&whole);
+    assert!(s["trains"][0].get("max_unloading_ratio").is_none());
+    assert!(s["envelope"].get("max_unloading_ratio").is_none());
 }
 
 #[test]

@@ -15,6 +15,7 @@ use std::sync::Arc;
 use beam::sdof::PiecewiseLinearSdof;
 use beam::{ModalBasis, ModalDamping, PassagePeaks};
 
+use crate::train_response::TrainMonitor;
 use crate::vehicle_bridge::{
     ContactGeometry, ContactModel, CouplingSpec, Integrator, Irregularity, Scenario, Simulation,
     VehicleBridgeError, VehicleLayout, WheelSpec,
@@ -67,17 +68,34 @@ impl std::fmt::Debug for InteractionModel {
     }
 }
 
+/// What the train's wheels and car bodies went through in one passage (the coupled part of
+/// the run, from the leading axle's entry until the last axle has left the span).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VehiclePeaks {
+    /// max over wheels and steps of (W_k − F_k)/W_k, W_k the wheel's static load and F_k its
+    /// contact force (1: a wheel fully unloaded, i.e. out of contact).
+    pub max_unloading_ratio: f64,
+    /// The smallest contact force of any wheel \[N\] (0 when a wheel lost contact).
+    pub min_contact_force: f64,
+    /// Transitions of a wheel from contact to loss of contact, over all wheels.
+    pub loss_of_contact_events: usize,
+    /// The largest vertical car-body acceleration \[m/s²\] (EN 1990 A2.4.4.3.2's comfort
+    /// criterion; 0 without a multibody vehicle).
+    pub max_body_acceleration: f64,
+}
+
 /// The deflection and acceleration peaks of train `train` crossing at `speed` \[m/s\], at
 /// `points` (their mode shapes in `point_shapes`, point-major), the run ending
-/// `free_vibration` \[s\] after the last axle has left the span. `static_deflection` is left
-/// empty (the caller takes it from the moving-force passage).
+/// `free_vibration` \[s\] after the last axle has left the span, and what its vehicles went
+/// through. `static_deflection` is left empty (the caller takes it from the moving-force
+/// passage).
 pub fn passage(
     model: &InteractionModel,
     train: usize,
     speed: f64,
     point_shapes: &[f64],
     free_vibration: f64,
-) -> Result<PassagePeaks, VehicleBridgeError> {
+) -> Result<(PassagePeaks, VehiclePeaks), VehicleBridgeError> {
     passage_with(model, train, speed, point_shapes, free_vibration, |_, _| {})
 }
 
@@ -122,7 +140,7 @@ fn passage_with(
     point_shapes: &[f64],
     free_vibration: f64,
     mut observe: impl FnMut(f64, &[(f64, f64)]),
-) -> Result<PassagePeaks, VehicleBridgeError> {
+) -> Result<(PassagePeaks, VehiclePeaks), VehicleBridgeError> {
     let vehicles = &model.trains[train];
     let length = model.basis.length();
     let m = model.basis.n_modes();
@@ -169,8 +187,29 @@ fn passage_with(
         }
         observe(t, &values);
     };
-    let summary = sim.run(|s| record(s.t(), &s.state()[..m], &s.acceleration()[..m]))?;
+    let mut monitor = TrainMonitor::new(&sim);
+    let summary = sim.run(|s| {
+        record(s.t(), &s.state()[..m], &s.acceleration()[..m]);
+        monitor.observe(s);
+    })?;
     let coupled = summary.solver.steps;
+    let vehicle_peaks = VehiclePeaks {
+        max_unloading_ratio: monitor.max_unloading_ratio(),
+        min_contact_force: summary
+            .wheels
+            .iter()
+            .map(|w| w.force.min.value)
+            .reduce(f64::min)
+            .unwrap_or(0.0)
+            .max(0.0),
+        loss_of_contact_events: summary.loss_of_contact_events,
+        max_body_acceleration: monitor
+            .vehicles()
+            .into_iter()
+            .flatten()
+            .map(|v| v.max_body_acceleration)
+            .fold(0.0, f64::max),
+    };
     // Free vibration: every axle has left the span, so the modes no longer feel the vehicles
     // (they load the rigid approach): the exact modal recurrence from the coupled run's final
     // modal state, on the same time grid.
@@ -182,7 +221,7 @@ fn passage_with(
         record(step as f64 * dt, &q, &a);
     }
     peaks.steps = coupled.max(total_steps);
-    Ok(peaks)
+    Ok((peaks, vehicle_peaks))
 }
 
 /// The rearmost axle's position (wheels and moving forces) \[m\] (≤ 0).

@@ -79,6 +79,9 @@ pub struct Passage {
     pub speed: usize,
     /// Peaks at the output points.
     pub peaks: PassagePeaks,
+    /// The wheels' unloading and contact losses and the car bodies' peak acceleration
+    /// (interaction model only; `None` for moving forces).
+    pub vehicles: Option<interaction::VehiclePeaks>,
 }
 
 /// A sweep that cannot run.
@@ -169,12 +172,15 @@ pub fn run(
                     .peaks(basis, &axles[train], v, spec.free_vibration, work)
                     .map_err(SweepError::from);
                 let peaks = match (&spec.model, moving) {
-                    (SweepModel::MovingForces, moving) => moving,
+                    (SweepModel::MovingForces, moving) => moving.map(|peaks| (peaks, None)),
                     (SweepModel::Interaction(model), Ok(moving)) => {
                         interaction::passage(model, train, v, &point_shapes, spec.free_vibration)
-                            .map(|peaks| beam::PassagePeaks {
-                                static_deflection: moving.static_deflection,
-                                ..peaks
+                            .map(|(peaks, vehicles)| {
+                                let peaks = beam::PassagePeaks {
+                                    static_deflection: moving.static_deflection,
+                                    ..peaks
+                                };
+                                (peaks, Some(vehicles))
                             })
                             .map_err(|e| SweepError::Interaction {
                                 train: spec.trains[train].name.clone(),
@@ -184,10 +190,11 @@ pub fn run(
                     }
                     (_, Err(e)) => Err(e),
                 };
-                Some(peaks.map(|peaks| Passage {
+                Some(peaks.map(|(peaks, vehicles)| Passage {
                     train,
                     speed,
                     peaks,
+                    vehicles,
                 }))
             },
         )

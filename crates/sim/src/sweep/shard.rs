@@ -46,6 +46,22 @@ pub struct ShardPassage {
     pub acceleration: Vec<u64>,
     /// Peak quasi-static deflections (bit patterns of f64) \[m\].
     pub static_deflection: Vec<u64>,
+    /// The vehicles' peaks (interaction model; absent for moving forces).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vehicles: Option<ShardVehicles>,
+}
+
+/// [`super::interaction::VehiclePeaks`] of one passage, exact (floats as bit patterns).
+#[derive(Debug, Clone, Copy, Serialize, Deserialize)]
+pub struct ShardVehicles {
+    /// max (W_k − F_k)/W_k.
+    pub max_unloading_ratio: u64,
+    /// Smallest contact force \[N\].
+    pub min_contact_force: u64,
+    /// Loss-of-contact events.
+    pub loss_of_contact_events: usize,
+    /// Largest car-body acceleration \[m/s²\].
+    pub max_body_acceleration: u64,
 }
 
 impl ShardFile {
@@ -77,6 +93,12 @@ fn encode(p: &Passage) -> ShardPassage {
         deflection: bits(&p.peaks.deflection),
         acceleration: bits(&p.peaks.acceleration),
         static_deflection: bits(&p.peaks.static_deflection),
+        vehicles: p.vehicles.map(|v| ShardVehicles {
+            max_unloading_ratio: v.max_unloading_ratio.to_bits(),
+            min_contact_force: v.min_contact_force.to_bits(),
+            loss_of_contact_events: v.loss_of_contact_events,
+            max_body_acceleration: v.max_body_acceleration.to_bits(),
+        }),
     }
 }
 
@@ -91,6 +113,12 @@ fn decode(p: &ShardPassage) -> Passage {
             static_deflection: floats(&p.static_deflection),
             steps: p.steps,
         },
+        vehicles: p.vehicles.map(|v| super::interaction::VehiclePeaks {
+            max_unloading_ratio: f64::from_bits(v.max_unloading_ratio),
+            min_contact_force: f64::from_bits(v.min_contact_force),
+            loss_of_contact_events: v.loss_of_contact_events,
+            max_body_acceleration: f64::from_bits(v.max_body_acceleration),
+        }),
     }
 }
 

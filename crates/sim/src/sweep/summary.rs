@@ -4,7 +4,8 @@
 
 use serde::Serialize;
 
-use super::eurocode::{Track, resonance_speeds};
+use super::eurocode::{Track, comfort_level, resonance_speeds};
+use super::interaction::VehiclePeaks;
 use super::{Passage, SweepSpec};
 use crate::train::hslm;
 
@@ -27,6 +28,66 @@ pub struct TrainSummary {
     pub dynamic_factor: f64,
     /// Speed of φ'_dyn \[m/s\].
     pub speed_at_dynamic_factor: f64,
+    /// The vehicles' side (interaction model only; its keys appear in the train's object).
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    pub vehicles: Option<TrainVehicles>,
+}
+
+/// What a train's wheels and car bodies went through over all speeds (interaction model).
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct TrainVehicles {
+    /// max over speeds, wheels and steps of (W_k − F_k)/W_k (1: a wheel out of contact).
+    pub max_unloading_ratio: f64,
+    /// Speed of that peak \[m/s\].
+    pub speed_at_max_unloading_ratio: f64,
+    /// The smallest contact force of any wheel at any speed \[N\].
+    pub min_contact_force: f64,
+    /// Loss-of-contact events summed over the speeds.
+    pub loss_of_contact_events: usize,
+    /// The speeds at which a wheel lost contact \[m/s\].
+    pub speeds_with_loss_of_contact: Vec<f64>,
+    /// The largest vertical car-body acceleration over the speeds \[m/s²\].
+    pub max_body_acceleration: f64,
+    /// Speed of that peak \[m/s\].
+    pub speed_at_max_body_acceleration: f64,
+    /// The EN 1990 A2.4.4.3.2 comfort level it reaches (`very good`, `good`, `acceptable`;
+    /// `null` when worse).
+    pub comfort_level: Option<&'static str>,
+}
+
+impl TrainVehicles {
+    fn new() -> Self {
+        TrainVehicles {
+            max_unloading_ratio: f64::NEG_INFINITY,
+            speed_at_max_unloading_ratio: 0.0,
+            min_contact_force: f64::INFINITY,
+            loss_of_contact_events: 0,
+            speeds_with_loss_of_contact: Vec::new(),
+            max_body_acceleration: f64::NEG_INFINITY,
+            speed_at_max_body_acceleration: 0.0,
+            comfort_level: None,
+        }
+    }
+
+    /// Takes the passage at `speed` into the maxima.
+    fn add(&mut self, v: &VehiclePeaks, speed: f64) {
+        if v.max_unloading_ratio > self.max_unloading_ratio {
+            (self.max_unloading_ratio, self.speed_at_max_unloading_ratio) =
+                (v.max_unloading_ratio, speed);
+        }
+        self.min_contact_force = self.min_contact_force.min(v.min_contact_force);
+        self.loss_of_contact_events += v.loss_of_contact_events;
+        if v.loss_of_contact_events > 0 {
+            self.speeds_with_loss_of_contact.push(speed);
+        }
+        if v.max_body_acceleration > self.max_body_acceleration {
+            (
+                self.max_body_acceleration,
+                self.speed_at_max_body_acceleration,
+            ) = (v.max_body_acceleration, speed);
+        }
+        self.comfort_level = comfort_level(self.max_body_acceleration);
+    }
 }
 
 /// The maxima over all trains at each speed.
@@ -40,6 +101,12 @@ pub struct Envelope {
     pub max_deflection: Vec<f64>,
     /// φ' (the largest over trains).
     pub dynamic_factor: Vec<f64>,
+    /// The largest wheel unloading ratio (W − F)/W over trains (interaction model only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_unloading_ratio: Option<Vec<f64>>,
+    /// The largest car-body acceleration over trains \[m/s²\] (interaction model only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_body_acceleration: Option<Vec<f64>>,
 }
 
 /// A resonance speed of a train with regular coach length.
@@ -113,7 +180,14 @@ pub fn summarise(
         max_acceleration: vec![0.0; ns],
         max_deflection: vec![0.0; ns],
         dynamic_factor: vec![0.0; ns],
+        max_unloading_ratio: None,
+        max_body_acceleration: None,
     };
+    let with_vehicles = sorted.iter().any(|p| p.vehicles.is_some());
+    if with_vehicles {
+        envelope.max_unloading_ratio = Some(vec![0.0; ns]);
+        envelope.max_body_acceleration = Some(vec![0.0; ns]);
+    }
     let mut trains = Vec::with_capacity(spec.trains.len());
     for (t, train) in spec.trains.iter().enumerate() {
         let mut s = TrainSummary {
@@ -125,6 +199,7 @@ pub fn summarise(
             speed_at_max_deflection: f64::NAN,
             dynamic_factor: 0.0,
             speed_at_dynamic_factor: f64::NAN,
+            vehicles: None,
         };
         for p in sorted.iter().filter(|p| p.train == t) {
             let v = spec.speeds[p.speed];
@@ -146,6 +221,15 @@ pub fn summarise(
             envelope.max_acceleration[e] = envelope.max_acceleration[e].max(a);
             envelope.max_deflection[e] = envelope.max_deflection[e].max(w);
             envelope.dynamic_factor[e] = envelope.dynamic_factor[e].max(f);
+            if let Some(vp) = &p.vehicles {
+                s.vehicles.get_or_insert_with(TrainVehicles::new).add(vp, v);
+                if let Some(u) = envelope.max_unloading_ratio.as_mut() {
+                    u[e] = u[e].max(vp.max_unloading_ratio);
+                }
+                if let Some(b) = envelope.max_body_acceleration.as_mut() {
+                    b[e] = b[e].max(vp.max_body_acceleration);
+                }
+            }
         }
         trains.push(s);
     }
@@ -205,13 +289,36 @@ pub const PASSAGE_COLUMNS: [&str; 7] = [
     "dynamic_factor",
 ];
 
-/// One row per (passage, output point), in the order of `passages`, as columns
+/// The columns [`passage_table`] adds when the passages carry their vehicles' peaks (the
+/// interaction model; the same values on every output point's row of a passage).
+pub const VEHICLE_COLUMNS: [&str; 4] = [
+    "max_unloading_ratio",
+    "min_contact_force_n",
+    "loss_of_contact_events",
+    "max_body_acceleration_m_s2",
+];
+
+/// One row per (passage, output point), in the order of `passages`, as named columns
 /// ([`PASSAGE_COLUMNS`]): the train as its index, the speed, the point, the peaks and the
 /// dynamic factor (peak deflection over peak quasi-static deflection; 0 where the latter is
-/// not positive).
-pub fn passage_table(spec: &SweepSpec, passages: &[Passage]) -> [Vec<f64>; 7] {
+/// not positive); then, when every passage carries its vehicles' peaks (the interaction
+/// model), [`VEHICLE_COLUMNS`].
+pub fn passage_table(spec: &SweepSpec, passages: &[Passage]) -> Vec<(&'static str, Vec<f64>)> {
     let mut columns: [Vec<f64>; 7] = Default::default();
+    let with_vehicles = !passages.is_empty() && passages.iter().all(|p| p.vehicles.is_some());
+    let mut vehicle_columns: [Vec<f64>; 4] = Default::default();
     for p in passages {
+        if let (true, Some(v)) = (with_vehicles, &p.vehicles) {
+            let row = [
+                v.max_unloading_ratio,
+                v.min_contact_force,
+                v.loss_of_contact_events as f64,
+                v.max_body_acceleration,
+            ];
+            for c in vehicle_columns.iter_mut().zip(row) {
+                c.0.extend(std::iter::repeat_n(c.1, spec.points.len()));
+            }
+        }
         for k in 0..spec.points.len() {
             let (w, a, s) = (
                 p.peaks.deflection[k],
@@ -232,5 +339,10 @@ pub fn passage_table(spec: &SweepSpec, passages: &[Passage]) -> [Vec<f64>; 7] {
             }
         }
     }
-    columns
+    let mut table: Vec<(&'static str, Vec<f64>)> =
+        PASSAGE_COLUMNS.into_iter().zip(columns).collect();
+    if with_vehicles {
+        table.extend(VEHICLE_COLUMNS.into_iter().zip(vehicle_columns));
+    }
+    table
 }
