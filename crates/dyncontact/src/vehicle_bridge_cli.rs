@@ -489,12 +489,20 @@ pub fn run(config: VehicleBridgeConfig, out: &Path, json: bool) -> Result<()> {
         train,
         traction,
         every,
+        every_is_default,
         snapshots,
         warnings,
         track,
     } = config;
     for w in warnings {
         eprintln!("warning: {w}");
+    }
+    if every_is_default && every > 1 && !json {
+        println!(
+            "timeseries.csv records one step in {every} (Δt = {:e} s): the default keeps the series within {:e} values; [output] every = 1 records every step (summary.json's extrema are over every step)",
+            scenario.dt,
+            sim::config::vehicle_bridge::DEFAULT_SERIES_VALUES
+        );
     }
     let run_out = RunOutput::create(out, OUTPUT_SET)?;
     let outcome = simulate_full(

@@ -68,8 +68,10 @@ pub struct VehicleBridgeConfig {
     pub train: Option<crate::train::Train>,
     /// Longitudinal friction (`[traction]`), if given.
     pub traction: Option<TractionSpec>,
-    /// Record every n-th step (`output.every`).
+    /// Record every n-th step (`output.every`; when not given, [`default_every`]).
     pub every: usize,
+    /// Whether `every` is the default ([`default_every`]) rather than the file's.
+    pub every_is_default: bool,
     /// Number of pressure snapshots (`output.snapshots`).
     pub snapshots: usize,
     /// Warnings for the user (the scenario is valid but has a known weakness).
@@ -364,8 +366,8 @@ pub fn build_in(file: VehicleBridgeFile, base: &Path) -> Result<VehicleBridgeCon
             .unwrap_or(defaults.max_halvings),
     };
     let out = file.output.as_ref();
-    let every = out.and_then(|o| o.every).unwrap_or(1);
-    if every == 0 {
+    let every_given = out.and_then(|o| o.every);
+    if every_given == Some(0) {
         bail!("[output] `every` must be at least 1");
     }
     let snapshots = checks::count(
@@ -399,6 +401,8 @@ pub fn build_in(file: VehicleBridgeFile, base: &Path) -> Result<VehicleBridgeCon
     if !dt_given {
         scenario.dt = default_dt(&scenario)?;
     }
+    let every = every_given
+        .unwrap_or_else(|| default_every(&scenario, file.traction.is_some(), file.track.is_some()));
     check_run_length(&scenario, every)?;
     check_implicit(&scenario)?;
     check_coupling(&scenario)?;
@@ -418,6 +422,7 @@ pub fn build_in(file: VehicleBridgeFile, base: &Path) -> Result<VehicleBridgeCon
         train,
         traction,
         every,
+        every_is_default: every_given.is_none(),
         snapshots,
         warnings,
         track,
@@ -577,6 +582,31 @@ fn static_stiffness(law: &mut dyn ContactLaw, load: f64) -> Result<f64, ConfigEr
 fn end_time(s: &Scenario) -> f64 {
     s.duration
         .unwrap_or_else(|| ((s.bridge.length() - s.rearmost_position()) / s.speed).max(0.0))
+}
+
+/// The most values (rows × columns) the time series of a run holds when `[output] every` is
+/// not given: about 80 MB of `timeseries.csv` (about 20 bytes a value; 32 MB in memory from
+/// Python). A single wheel's run of up to 2.8e5 steps (14 columns), or a 32-wheel train's of
+/// up to 1.3e4 (293 columns), is still recorded at every step; longer runs record one step in
+/// [`default_every`] (the summary's extrema are taken at every step regardless).
+pub const DEFAULT_SERIES_VALUES: f64 = 4e6;
+
+/// The default `[output] every`: the smallest stride that keeps the time series (its columns:
+/// [`crate::vehicle_bridge_series::columns`], with the track's) within
+/// [`DEFAULT_SERIES_VALUES`].
+pub fn default_every(s: &Scenario, traction: bool, track: bool) -> usize {
+    let wheels = s.wheels.len();
+    let mut width = crate::vehicle_bridge_series::columns(wheels, traction).len();
+    if track {
+        width += crate::vehicle_bridge_series::track_columns(wheels).len();
+    }
+    let rows = (end_time(s) / s.dt).ceil() + 2.0;
+    let every = (rows * width as f64 / DEFAULT_SERIES_VALUES).ceil();
+    if every.is_finite() && every >= 1.0 {
+        every.min(u32::MAX as f64) as usize
+    } else {
+        1
+    }
 }
 
 /// Steps, output rows and the irregularity's setup work of the run, refused when absurd (the
