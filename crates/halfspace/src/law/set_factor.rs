@@ -262,7 +262,34 @@ avx_dispatch! {
 /// (y_j = (z_j − Σ_{i>j} L_ij y_i) / L_jj). L column-major with leading dimension `s`.
 #[inline(always)]
 fn substitute<T: Row>(l: &[f64], s: usize, m: usize, y: &mut [T], backward: bool) {
-    for j in 0..m {
+    // Four columns per pass over the rows below them: each y_i takes the four updates in
+    // column order, as the plain loop does (the same results bit for bit), with one load
+    // and store of y_i instead of four.
+    let mut start = 0;
+    while start + 4 <= m {
+        let j = start;
+        let mut yc = [y[j]; 4];
+        for c in 0..4 {
+            let col = &l[(j + c) * s..(j + c) * s + j + 4];
+            let v = y[j + c].scale(1.0 / col[j + c]);
+            y[j + c] = v;
+            yc[c] = v;
+            for (yi, &lic) in y[j + c + 1..j + 4].iter_mut().zip(&col[j + c + 1..j + 4]) {
+                yi.sub_scaled(lic, v);
+            }
+        }
+        let cols: [&[f64]; 4] = std::array::from_fn(|c| &l[(j + c) * s + j + 4..(j + c) * s + m]);
+        for (i, yi) in y[j + 4..m].iter_mut().enumerate() {
+            let mut t = *yi;
+            t.sub_scaled(cols[0][i], yc[0]);
+            t.sub_scaled(cols[1][i], yc[1]);
+            t.sub_scaled(cols[2][i], yc[2]);
+            t.sub_scaled(cols[3][i], yc[3]);
+            *yi = t;
+        }
+        start += 4;
+    }
+    for j in start..m {
         let col = &l[j * s..j * s + m];
         let yj = y[j].scale(1.0 / col[j]);
         y[j] = yj;
