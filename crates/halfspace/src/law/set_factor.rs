@@ -152,7 +152,7 @@ impl SetFactor {
         a.clear();
         a.extend(self.members.iter().map(|&f| self.influence(f, e)));
         // Forward substitution L l = a (l overwrites a).
-        with_avx(|| substitute(&self.l, s, m, &mut a[..], false));
+        substitute_fast(&self.l, s, m, &mut a[..], false);
         let diag = self.kernel[0];
         let d2 = diag - a.iter().map(|v| v * v).sum::<f64>();
         // A NaN pivot fails too.
@@ -181,21 +181,7 @@ impl SetFactor {
         let mut x = std::mem::take(&mut self.work);
         x.clear();
         x.extend_from_slice(&self.l[k * s + k + 1..k * s + m]);
-        let l = &mut self.l;
-        with_avx(|| {
-            for j in k + 1..m {
-                let xj = x[j - k - 1];
-                let col = &mut l[j * s..j * s + m];
-                let ljj = col[j];
-                let r = ljj.hypot(xj);
-                let (c, sn) = (r / ljj, xj / ljj);
-                col[j] = r;
-                for (lij, xi) in col[j + 1..m].iter_mut().zip(&mut x[j - k..]) {
-                    *lij = (*lij + sn * *xi) / c;
-                    *xi = c * *xi - sn * *lij;
-                }
-            }
-        });
+        rotate_fast(&mut self.l, s, k, m, &mut x);
         self.work = x;
         // Remove row k from the columns before it, and shift the later columns left and up.
         for j in 0..k {
@@ -217,25 +203,58 @@ impl SetFactor {
     /// the factor for all of them.
     pub(super) fn solve_block<T: Row>(&self, y: &mut [T]) {
         let (m, s) = (self.members.len(), self.stride);
-        with_avx(|| substitute(&self.l, s, m, y, true));
+        substitute_fast(&self.l, s, m, y, true);
     }
 }
 
-/// Runs `f` compiled with AVX when the processor has it (the same operations in the same
-/// order as without: no fused multiply-add, so the results are identical bit for bit).
-#[inline(always)]
-fn with_avx(f: impl FnOnce()) {
-    #[cfg(target_arch = "x86_64")]
-    if std::arch::is_x86_feature_detected!("avx") {
-        #[target_feature(enable = "avx")]
-        unsafe fn avx(f: impl FnOnce()) {
-            f()
+/// Runs `$body` (a block using the listed arguments) through a copy compiled with AVX when
+/// the processor has it: the same operations in the same order as without (no fused
+/// multiply-add), so the results are identical bit for bit. The body must be a plain
+/// function call chain (closures would not inherit the target feature).
+macro_rules! avx_dispatch {
+    ($(#[$doc:meta])* fn $name:ident $(<$g:ident: $b:path>)?($($arg:ident: $ty:ty),*) $body:block) => {
+        $(#[$doc])*
+        fn $name $(<$g: $b>)?($($arg: $ty),*) {
+            #[cfg(target_arch = "x86_64")]
+            {
+                #[target_feature(enable = "avx")]
+                fn avx $(<$g: $b>)?($($arg: $ty),*) $body
+                if std::arch::is_x86_feature_detected!("avx") {
+                    // SAFETY: AVX is present (checked at run time just above).
+                    unsafe { avx($($arg),*) };
+                    return;
+                }
+            }
+            $body
         }
-        // SAFETY: AVX is present (checked at run time above).
-        unsafe { avx(f) };
-        return;
+    };
+}
+
+avx_dispatch! {
+    /// [`substitute`], with AVX when the processor has it.
+    fn substitute_fast<T: Row>(l: &[f64], s: usize, m: usize, y: &mut [T], backward: bool) {
+        substitute(l, s, m, y, backward)
     }
-    f()
+}
+
+avx_dispatch! {
+    /// The Givens rotations of a deletion (row and column `k` of a factor of order `m`,
+    /// [`SetFactor::delete`]): L₃₃ L₃₃ᵀ + x xᵀ with x = l₃₂ (overwritten), with AVX when the
+    /// processor has it.
+    fn rotate_fast(l: &mut [f64], s: usize, k: usize, m: usize, x: &mut [f64]) {
+        for j in k + 1..m {
+            let xj = x[j - k - 1];
+            let col = &mut l[j * s..j * s + m];
+            let ljj = col[j];
+            let r = ljj.hypot(xj);
+            let (c, sn) = (r / ljj, xj / ljj);
+            col[j] = r;
+            for (lij, xi) in col[j + 1..m].iter_mut().zip(&mut x[j - k..]) {
+                *lij = (*lij + sn * *xi) / c;
+                *xi = c * *xi - sn * *lij;
+            }
+        }
+    }
 }
 
 /// Forward substitution L z = b in place (column by column: z_j = b_j / L_jj, then
@@ -243,7 +262,34 @@ fn with_avx(f: impl FnOnce()) {
 /// (y_j = (z_j − Σ_{i>j} L_ij y_i) / L_jj). L column-major with leading dimension `s`.
 #[inline(always)]
 fn substitute<T: Row>(l: &[f64], s: usize, m: usize, y: &mut [T], backward: bool) {
-    for j in 0..m {
+    // Four columns per pass over the rows below them: each y_i takes the four updates in
+    // column order, as the plain loop does (the same results bit for bit), with one load
+    // and store of y_i instead of four.
+    let mut start = 0;
+    while start + 4 <= m {
+        let j = start;
+        let mut yc = [y[j]; 4];
+        for c in 0..4 {
+            let col = &l[(j + c) * s..(j + c) * s + j + 4];
+            let v = y[j + c].scale(1.0 / col[j + c]);
+            y[j + c] = v;
+            yc[c] = v;
+            for (yi, &lic) in y[j + c + 1..j + 4].iter_mut().zip(&col[j + c + 1..j + 4]) {
+                yi.sub_scaled(lic, v);
+            }
+        }
+        let cols: [&[f64]; 4] = std::array::from_fn(|c| &l[(j + c) * s + j + 4..(j + c) * s + m]);
+        for (i, yi) in y[j + 4..m].iter_mut().enumerate() {
+            let mut t = *yi;
+            t.sub_scaled(cols[0][i], yc[0]);
+            t.sub_scaled(cols[1][i], yc[1]);
+            t.sub_scaled(cols[2][i], yc[2]);
+            t.sub_scaled(cols[3][i], yc[3]);
+            *yi = t;
+        }
+        start += 4;
+    }
+    for j in start..m {
         let col = &l[j * s..j * s + m];
         let yj = y[j].scale(1.0 / col[j]);
         y[j] = yj;
@@ -326,15 +372,26 @@ impl<const K: usize> Row for [f64; K] {
             self[r] -= l * y[r];
         }
     }
+    /// With four partial sums per lane (four independent chains of additions, so the loop
+    /// is not bound by the latency of one; a fixed order).
     #[inline(always)]
     fn dot(l: &[f64], y: &[Self]) -> Self {
-        let mut acc = [0.0; K];
-        for (li, yi) in l.iter().zip(y) {
+        let mut acc = [[0.0; K]; 4];
+        let (cl, cy) = (l.chunks_exact(4), y.chunks_exact(4));
+        let mut tail = [0.0; K];
+        for (li, yi) in cl.remainder().iter().zip(cy.remainder()) {
             for r in 0..K {
-                acc[r] += li * yi[r];
+                tail[r] += li * yi[r];
             }
         }
-        acc
+        for (l4, y4) in cl.zip(cy) {
+            for (a, (li, yi)) in acc.iter_mut().zip(l4.iter().zip(y4)) {
+                for r in 0..K {
+                    a[r] += li * yi[r];
+                }
+            }
+        }
+        std::array::from_fn(|r| (acc[0][r] + acc[1][r]) + (acc[2][r] + acc[3][r]) + tail[r])
     }
 }
 
