@@ -61,6 +61,31 @@ pub fn sparse_mul_add_rows(
     }
 }
 
+/// `out_i += s1 · (A x1)_i`, then `out_i += s2 · (A x2)_i`, for the rows `i` in `rows` only:
+/// the operations of [`sparse_mul_add_rows`] with (s1, x1) followed by the same with (s2, x2),
+/// bit for bit, in one pass over the rows of `A`.
+pub fn sparse_mul_add2_rows(
+    a: SparseRowMatRef<'_, usize, f64>,
+    (s1, x1): (f64, &[f64]),
+    (s2, x2): (f64, &[f64]),
+    out: &mut [f64],
+    rows: impl Iterator<Item = Range<usize>>,
+) {
+    let symbolic = a.symbolic();
+    let (row_ptr, col_idx, val) = (symbolic.row_ptr(), symbolic.col_idx(), a.val());
+    for range in rows {
+        let start = range.start;
+        for (i, o) in out[range].iter_mut().enumerate() {
+            let (begin, end) = (row_ptr[start + i], row_ptr[start + i + 1]);
+            let (cols, vals) = (&col_idx[begin..end], &val[begin..end]);
+            let ax1: f64 = cols.iter().zip(vals).map(|(&j, v)| v * x1[j]).sum();
+            let ax2: f64 = cols.iter().zip(vals).map(|(&j, v)| v * x2[j]).sum();
+            *o += s1 * ax1;
+            *o += s2 * ax2;
+        }
+    }
+}
+
 /// The rows `0..n` outside the sorted, disjoint ranges `frozen`, as ranges in increasing order
 /// (the rows a step evaluates; `StructuralStepper::freeze`).
 pub fn rows_outside(n: usize, frozen: &[Range<usize>]) -> impl Iterator<Item = Range<usize>> + '_ {
@@ -122,6 +147,29 @@ mod tests {
                 y[i]
             };
             assert_eq!(z[i].to_bits(), expected.to_bits(), "row {i}");
+        }
+        // Two products in one pass: bit for bit the two products in turn.
+        let x2: Vec<f64> = (0..n).map(|i| (i as f64 * 0.7).cos()).collect();
+        let mut twice = vec![0.5; n];
+        sparse_mul_add_rows(
+            sparse.as_ref(),
+            -2.0,
+            &x,
+            &mut twice,
+            rows_outside(n, &frozen),
+        );
+        sparse_mul_add_rows(
+            sparse.as_ref(),
+            0.3,
+            &x2,
+            &mut twice,
+            rows_outside(n, &frozen),
+        );
+        let mut once = vec![0.5; n];
+        let rows = rows_outside(n, &frozen);
+        sparse_mul_add2_rows(sparse.as_ref(), (-2.0, &x), (0.3, &x2), &mut once, rows);
+        for i in 0..n {
+            assert_eq!(once[i].to_bits(), twice[i].to_bits(), "row {i}");
         }
         let everything = [Range { start: 0, end: 4 }];
         assert_eq!(rows_outside(4, &everything).count(), 0);
