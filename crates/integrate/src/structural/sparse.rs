@@ -45,20 +45,9 @@ pub fn sparse_mul_add_rows(
     out: &mut [f64],
     rows: impl Iterator<Item = Range<usize>>,
 ) {
-    let symbolic = a.symbolic();
-    let (row_ptr, col_idx, val) = (symbolic.row_ptr(), symbolic.col_idx(), a.val());
-    for range in rows {
-        let start = range.start;
-        for (i, o) in out[range].iter_mut().enumerate() {
-            let (begin, end) = (row_ptr[start + i], row_ptr[start + i + 1]);
-            let ax: f64 = col_idx[begin..end]
-                .iter()
-                .zip(&val[begin..end])
-                .map(|(&j, v)| v * x[j])
-                .sum();
-            *o += s * ax;
-        }
-    }
+    for_rows(a, out, rows, |cols, vals, o| {
+        *o += s * row_dot(cols, vals, x)
+    });
 }
 
 /// `out_i += s1 · (A x1)_i`, then `out_i += s2 · (A x2)_i`, for the rows `i` in `rows` only:
@@ -71,19 +60,37 @@ pub fn sparse_mul_add2_rows(
     out: &mut [f64],
     rows: impl Iterator<Item = Range<usize>>,
 ) {
+    for_rows(a, out, rows, |cols, vals, o| {
+        let (ax1, ax2) = (row_dot(cols, vals, x1), row_dot(cols, vals, x2));
+        *o += s1 * ax1;
+        *o += s2 * ax2;
+    });
+}
+
+/// `f(columns, values, out_i)` for each row `i` of `a` in `rows`, with the row's column indices
+/// and values.
+#[inline(always)]
+fn for_rows(
+    a: SparseRowMatRef<'_, usize, f64>,
+    out: &mut [f64],
+    rows: impl Iterator<Item = Range<usize>>,
+    mut f: impl FnMut(&[usize], &[f64], &mut f64),
+) {
     let symbolic = a.symbolic();
     let (row_ptr, col_idx, val) = (symbolic.row_ptr(), symbolic.col_idx(), a.val());
     for range in rows {
         let start = range.start;
         for (i, o) in out[range].iter_mut().enumerate() {
             let (begin, end) = (row_ptr[start + i], row_ptr[start + i + 1]);
-            let (cols, vals) = (&col_idx[begin..end], &val[begin..end]);
-            let ax1: f64 = cols.iter().zip(vals).map(|(&j, v)| v * x1[j]).sum();
-            let ax2: f64 = cols.iter().zip(vals).map(|(&j, v)| v * x2[j]).sum();
-            *o += s1 * ax1;
-            *o += s2 * ax2;
+            f(&col_idx[begin..end], &val[begin..end], o);
         }
     }
+}
+
+/// One row's `Σ_j a_ij x_j`, summed in column order.
+#[inline(always)]
+fn row_dot(cols: &[usize], vals: &[f64], x: &[f64]) -> f64 {
+    cols.iter().zip(vals).map(|(&j, v)| v * x[j]).sum()
 }
 
 /// The rows `0..n` outside the sorted, disjoint ranges `frozen`, as ranges in increasing order
