@@ -309,10 +309,11 @@ fn grouped_capacitance_equals_dense_for_a_train() {
     assert!((vdx + delta[r]).abs() < 1e-10 * delta[r]);
 }
 
-/// The work space keeps A⁻¹ĝ per wheel and reuses it while A and ĝ are unchanged: a work
-/// space carried through a sequence of updates (new right-hand sides, a changed ĝ, a smaller
-/// active set, a rebuilt A) gives the same Δx and ΔF, bit for bit, as a fresh one each time,
-/// and recomputes exactly the solves whose inputs changed.
+/// The work space keeps A⁻¹ĝ per wheel and reuses it while A and ĝ are unchanged, and the
+/// capacitance entries s vᵀA⁻¹ĝ of a group while its wheels' A⁻¹ĝ and v are: a work space
+/// carried through a sequence of updates (new right-hand sides, a changed ĝ, a changed v, a
+/// smaller active set, a rebuilt A) gives the same Δx and ΔF, bit for bit, as a fresh one each
+/// time, and recomputes exactly the solves and the groups' entries whose inputs changed.
 #[test]
 fn reused_solves_equal_fresh_ones_bit_for_bit() {
     let mut rng = ChaCha8Rng::seed_from_u64(11);
@@ -333,6 +334,7 @@ fn reused_solves_equal_fresh_ones_bit_for_bit() {
     let mut kept = CapacitanceWork::new(n, wheels);
     let update = |a: &BlockDiagonal,
                   gs: &[Vec<f64>],
+                  vs: &[Vec<f64>],
                   active: &[usize],
                   rng: &mut ChaCha8Rng,
                   kept: &mut CapacitanceWork| {
@@ -344,7 +346,7 @@ fn reused_solves_equal_fresh_ones_bit_for_bit() {
                 a,
                 s,
                 gs,
-                &vs,
+                vs,
                 &patterns,
                 active,
                 &compliance[..active.len()],
@@ -357,25 +359,75 @@ fn reused_solves_equal_fresh_ones_bit_for_bit() {
             (x, df)
         };
         let before = kept.solve_counts();
+        let entries_before = kept.entry_counts();
         let reused = run(kept);
         let fresh = run(&mut CapacitanceWork::default());
         let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
         assert_eq!(bits(&reused.0), bits(&fresh.0));
         assert_eq!(bits(&reused.1), bits(&fresh.1));
         let after = kept.solve_counts();
-        (after.0 - before.0, after.1 - before.1)
+        let entries_after = kept.entry_counts();
+        // (solves, reused solves, groups' entries kept, groups' entries formed)
+        (
+            after.0 - before.0,
+            after.1 - before.1,
+            entries_after.0 - entries_before.0,
+            entries_after.1 - entries_before.1,
+        )
     };
     let all = [0, 1, 2, 3];
-    assert_eq!(update(&a, &gs, &all, &mut rng, &mut kept), (4, 0));
-    // Same A and ĝ, a new right-hand side: every solve is reused.
-    assert_eq!(update(&a, &gs, &all, &mut rng, &mut kept), (0, 4));
-    // One ĝ changed in its last bit: only that wheel is solved again.
+    // The wheels share the modes: one group.
+    assert_eq!(
+        update(&a, &gs, &vs, &all, &mut rng, &mut kept),
+        (4, 0, 0, 1)
+    );
+    // Same A, ĝ and v, a new right-hand side: every solve and the entries are reused.
+    assert_eq!(
+        update(&a, &gs, &vs, &all, &mut rng, &mut kept),
+        (0, 4, 1, 0)
+    );
+    // One ĝ changed in its last bit: only that wheel is solved again, the entries formed again.
     gs[2][3] = f64::from_bits(gs[2][3].to_bits() + 1);
-    assert_eq!(update(&a, &gs, &all, &mut rng, &mut kept), (1, 3));
-    // A smaller active set reuses what it has.
-    assert_eq!(update(&a, &gs, &[1, 3], &mut rng, &mut kept), (0, 2));
-    // A rebuilt A (even with the same blocks) invalidates every stored solve.
+    assert_eq!(
+        update(&a, &gs, &vs, &all, &mut rng, &mut kept),
+        (1, 3, 0, 1)
+    );
+    // One v changed in its last bit: the solves are reused, the entries formed again.
+    let mut changed = vs.clone();
+    changed[1][0] = f64::from_bits(changed[1][0].to_bits() + 1);
+    assert_eq!(
+        update(&a, &gs, &changed, &all, &mut rng, &mut kept),
+        (0, 4, 0, 1)
+    );
+    assert_eq!(
+        update(&a, &gs, &changed, &all, &mut rng, &mut kept),
+        (0, 4, 1, 0)
+    );
+    // A smaller active set reuses the solves it has and forms its group's entries.
+    assert_eq!(
+        update(&a, &gs, &vs, &[1, 3], &mut rng, &mut kept),
+        (0, 2, 0, 1)
+    );
+    // A rebuilt A (even with the same blocks) invalidates every stored solve and entry.
     let (rebuilt, _) = random_system(&mut ChaCha8Rng::seed_from_u64(11), wheels);
     a = rebuilt;
-    assert_eq!(update(&a, &gs, &all, &mut rng, &mut kept), (4, 0));
+    assert_eq!(
+        update(&a, &gs, &vs, &all, &mut rng, &mut kept),
+        (4, 0, 0, 1)
+    );
+    // A declared geometry: v is not compared; the entries are formed once per declaration.
+    kept.new_geometry();
+    assert_eq!(
+        update(&a, &gs, &vs, &all, &mut rng, &mut kept),
+        (0, 4, 0, 1)
+    );
+    assert_eq!(
+        update(&a, &gs, &vs, &all, &mut rng, &mut kept),
+        (0, 4, 1, 0)
+    );
+    kept.new_geometry();
+    assert_eq!(
+        update(&a, &gs, &changed, &all, &mut rng, &mut kept),
+        (0, 4, 0, 1)
+    );
 }

@@ -45,20 +45,52 @@ pub fn sparse_mul_add_rows(
     out: &mut [f64],
     rows: impl Iterator<Item = Range<usize>>,
 ) {
+    for_rows(a, out, rows, |cols, vals, o| {
+        *o += s * row_dot(cols, vals, x)
+    });
+}
+
+/// `out_i += s1 · (A x1)_i`, then `out_i += s2 · (A x2)_i`, for the rows `i` in `rows` only:
+/// the operations of [`sparse_mul_add_rows`] with (s1, x1) followed by the same with (s2, x2),
+/// bit for bit, in one pass over the rows of `A`.
+pub fn sparse_mul_add2_rows(
+    a: SparseRowMatRef<'_, usize, f64>,
+    (s1, x1): (f64, &[f64]),
+    (s2, x2): (f64, &[f64]),
+    out: &mut [f64],
+    rows: impl Iterator<Item = Range<usize>>,
+) {
+    for_rows(a, out, rows, |cols, vals, o| {
+        let (ax1, ax2) = (row_dot(cols, vals, x1), row_dot(cols, vals, x2));
+        *o += s1 * ax1;
+        *o += s2 * ax2;
+    });
+}
+
+/// `f(columns, values, out_i)` for each row `i` of `a` in `rows`, with the row's column indices
+/// and values.
+#[inline(always)]
+fn for_rows(
+    a: SparseRowMatRef<'_, usize, f64>,
+    out: &mut [f64],
+    rows: impl Iterator<Item = Range<usize>>,
+    mut f: impl FnMut(&[usize], &[f64], &mut f64),
+) {
     let symbolic = a.symbolic();
     let (row_ptr, col_idx, val) = (symbolic.row_ptr(), symbolic.col_idx(), a.val());
     for range in rows {
         let start = range.start;
         for (i, o) in out[range].iter_mut().enumerate() {
             let (begin, end) = (row_ptr[start + i], row_ptr[start + i + 1]);
-            let ax: f64 = col_idx[begin..end]
-                .iter()
-                .zip(&val[begin..end])
-                .map(|(&j, v)| v * x[j])
-                .sum();
-            *o += s * ax;
+            f(&col_idx[begin..end], &val[begin..end], o);
         }
     }
+}
+
+/// One row's `Σ_j a_ij x_j`, summed in column order.
+#[inline(always)]
+fn row_dot(cols: &[usize], vals: &[f64], x: &[f64]) -> f64 {
+    cols.iter().zip(vals).map(|(&j, v)| v * x[j]).sum()
 }
 
 /// The rows `0..n` outside the sorted, disjoint ranges `frozen`, as ranges in increasing order
@@ -122,6 +154,29 @@ mod tests {
                 y[i]
             };
             assert_eq!(z[i].to_bits(), expected.to_bits(), "row {i}");
+        }
+        // Two products in one pass: bit for bit the two products in turn.
+        let x2: Vec<f64> = (0..n).map(|i| (i as f64 * 0.7).cos()).collect();
+        let mut twice = vec![0.5; n];
+        sparse_mul_add_rows(
+            sparse.as_ref(),
+            -2.0,
+            &x,
+            &mut twice,
+            rows_outside(n, &frozen),
+        );
+        sparse_mul_add_rows(
+            sparse.as_ref(),
+            0.3,
+            &x2,
+            &mut twice,
+            rows_outside(n, &frozen),
+        );
+        let mut once = vec![0.5; n];
+        let rows = rows_outside(n, &frozen);
+        sparse_mul_add2_rows(sparse.as_ref(), (-2.0, &x), (0.3, &x2), &mut once, rows);
+        for i in 0..n {
+            assert_eq!(once[i].to_bits(), twice[i].to_bits(), "row {i}");
         }
         let everything = [Range { start: 0, end: 4 }];
         assert_eq!(rows_outside(4, &everything).count(), 0);

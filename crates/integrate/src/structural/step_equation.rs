@@ -5,7 +5,7 @@ use faer::{MatMut, MatRef};
 
 use std::ops::Range;
 
-use super::sparse::{rows_outside, sparse_mul_add_rows};
+use super::sparse::{rows_outside, sparse_mul_add_rows, sparse_mul_add2_rows};
 
 use crate::IntegrateError;
 
@@ -238,8 +238,14 @@ impl StepEquation {
         }
         sparse_mul_add_rows(mass, self.mass_coefficient, &self.q_pred, out, rows());
         if let Some(c) = damping {
-            sparse_mul_add_rows(c, self.damping_coefficient, &self.q_pred, out, rows());
-            sparse_mul_add_rows(c, -(1.0 - self.alpha_f), &self.v_pred, out, rows());
+            // C q̃ and C ṽ in one pass (the same operations as two products in turn).
+            sparse_mul_add2_rows(
+                c,
+                (self.damping_coefficient, &self.q_pred),
+                (-(1.0 - self.alpha_f), &self.v_pred),
+                out,
+                rows(),
+            );
         }
         Ok(())
     }

@@ -83,6 +83,16 @@ impl Simulation {
         let q = self.stepper.q();
         let a = self.stepper.a();
         for k in 0..nw {
+            // A wheel held at rest since its last sample: its state, approach and contact
+            // output are unchanged (module `resting`), so is its sample but for the count.
+            let at_rest = self.wheel_at_rest(k);
+            if at_rest && self.resting.sampled_at_rest.get(k) == Some(&true) {
+                self.samples[k].contact.iterations = counts.contact_iterations;
+                continue;
+            }
+            if let Some(sampled) = self.resting.sampled_at_rest.get_mut(k) {
+                *sampled = at_rest;
+            }
             let iw = self.wheel_dof[k];
             let contact = self.work.outputs[k];
             let rigid = is_rigid(&self.contacts[k]);

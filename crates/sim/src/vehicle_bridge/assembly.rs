@@ -3,7 +3,11 @@
 
 use beam::Derivative;
 use faer::{Mat, MatRef};
-use integrate::structural::sparse::{SparseMatrix, sparse_from_dense, sparse_mul};
+use std::ops::Range;
+
+use integrate::structural::sparse::{
+    SparseMatrix, rows_outside, sparse_from_dense, sparse_mul, sparse_mul_add_rows,
+};
 use integrate::structural::{StepEquation, StructuralMethod, StructuralStepper, StructuralSystem};
 
 use halfspace::law::{ContactModel as LawModel, LawOutput};
@@ -27,6 +31,35 @@ pub(super) struct Structure {
     pub(super) gravity_load: Vec<f64>,
     /// Contact load added to the external force (used for the consistent start acceleration).
     pub(super) contact_load: Vec<f64>,
+    /// Rows of K q left as they are by `internal_force` (sorted, disjoint): the rows of DOFs
+    /// frozen at rest whose K row reaches frozen DOFs only, so their product is unchanged
+    /// ([`Structure::keep_rows`]).
+    kept_rows: Vec<Range<usize>>,
+}
+
+impl Structure {
+    /// Keeps the rows of `frozen` (sorted, disjoint ranges of DOFs frozen at rest: their q
+    /// does not change) out of later `internal_force` products where the row of K reaches only
+    /// frozen DOFs: (K q)_i then depends on unchanged q only, so the value of the last product
+    /// is exact. Replaces the previous set; an empty `frozen` computes every row again.
+    pub(super) fn keep_rows(&mut self, frozen: &[Range<usize>]) {
+        self.kept_rows.clear();
+        let k = self.stiffness_sparse.as_ref();
+        let symbolic = k.symbolic();
+        let (row_ptr, col_idx) = (symbolic.row_ptr(), symbolic.col_idx());
+        let is_frozen = |j: usize| frozen.iter().any(|r| r.contains(&j));
+        for i in frozen.iter().flat_map(|r| r.clone()) {
+            if col_idx[row_ptr[i]..row_ptr[i + 1]]
+                .iter()
+                .all(|&j| is_frozen(j))
+            {
+                match self.kept_rows.last_mut() {
+                    Some(last) if last.end == i => last.end = i + 1,
+                    _ => self.kept_rows.push(i..i + 1),
+                }
+            }
+        }
+    }
 }
 
 impl StructuralSystem for Structure {
@@ -40,7 +73,18 @@ impl StructuralSystem for Structure {
         Some(self.damping.as_ref())
     }
     fn internal_force(&mut self, q: &[f64], f_int: &mut [f64]) {
-        sparse_mul(self.stiffness_sparse.as_ref(), q, f_int);
+        if self.kept_rows.is_empty() {
+            sparse_mul(self.stiffness_sparse.as_ref(), q, f_int);
+            return;
+        }
+        // The same operations per row as `sparse_mul` (0 + 1·(K q)_i), the kept rows untouched.
+        let n = f_int.len();
+        let rows = || rows_outside(n, &self.kept_rows);
+        for range in rows() {
+            f_int[range].fill(0.0);
+        }
+        let k = self.stiffness_sparse.as_ref();
+        sparse_mul_add_rows(k, 1.0, q, f_int, rows());
     }
     fn tangent_stiffness(&mut self, _q: &[f64], mut k: faer::MatMut<'_, f64>) -> bool {
         k.copy_from(self.stiffness.as_ref());
@@ -280,6 +324,7 @@ impl Simulation {
             mass_sparse: sparse_from_dense(mass.as_ref()),
             damping_sparse: sparse_from_dense(damping.as_ref()),
             stiffness_sparse: sparse_from_dense(stiffness.as_ref()),
+            kept_rows: Vec::new(),
             mass,
             damping,
             stiffness,

@@ -28,20 +28,43 @@ impl Simulation {
             }
             Ok(true)
         };
+        let off = |x: f64| !(0.0..=length).contains(&x);
         for (k, spec) in self.scenario.wheels.iter().enumerate() {
             let x = spec.position + self.scenario.speed * t;
             self.samples[k].position = x;
+            // A wheel that stays off the span: its shapes are zero already (`span_modes` 0
+            // means every shape under it was zero or filled with zeros) and its pattern is its
+            // own DOF; only the irregularity changes (the same values as the full pass).
+            let columns_at = columns(&self.contacts[k]);
+            if w.span_modes[k] == 0
+                && w.pattern[k].len() == 1
+                && off(x)
+                && columns_at.iter().all(|&xi| off(x + xi))
+            {
+                let r = self.scenario.irregularity.height(x);
+                w.r_at_wheel[k] = r;
+                for (rc, &xi) in w.r_at_columns[k].iter_mut().zip(columns_at) {
+                    // A column at the wheel sees the wheel's rail height (x + 0 = x).
+                    *rc = if xi == 0.0 {
+                        r
+                    } else {
+                        self.scenario.irregularity.height(x + xi)
+                    };
+                }
+                continue;
+            }
             let mut inside = shapes_at(x, &mut w.shape_at_wheel[k])?;
             w.r_at_wheel[k] = self.scenario.irregularity.height(x);
-            for (i, &xi) in columns(&self.contacts[k]).iter().enumerate() {
+            for (i, &xi) in columns_at.iter().enumerate() {
                 let xc = x + xi;
                 let out = &mut w.shape_at_columns[k][i * m..(i + 1) * m];
                 if xi == 0.0 {
                     out.copy_from_slice(&w.shape_at_wheel[k]);
+                    w.r_at_columns[k][i] = w.r_at_wheel[k];
                 } else {
                     inside |= shapes_at(xc, out)?;
+                    w.r_at_columns[k][i] = self.scenario.irregularity.height(xc);
                 }
-                w.r_at_columns[k][i] = self.scenario.irregularity.height(xc);
             }
             // ĝ and v touch the modes only while the wheel or one of its columns is on the
             // span (off it every mode shape is zero, and so are their mode entries; the scan
@@ -87,7 +110,13 @@ impl Simulation {
             let defl = w.deflection_under(k, &w.x);
             w.delta[k] = w.approach(k, iw, &w.x);
             if let LawModel::Law(law) = &self.contacts[k] {
-                for i in 0..law.columns().len() {
+                for (i, &xi) in law.columns().iter().enumerate() {
+                    // A column at the wheel has the wheel's shapes and rail height: its
+                    // deflection is `defl` (the same sum), so its gap is exactly 0 if finite.
+                    if xi == 0.0 && defl.is_finite() {
+                        w.column_gap[k][i] = 0.0;
+                        continue;
+                    }
                     let cs = &w.shape_at_columns[k][i * m..(i + 1) * m];
                     let wc: f64 = (0..w.span_modes[k]).map(|j| w.x[j] * cs[j]).sum();
                     w.column_gap[k][i] = (wc - defl) - (w.r_at_columns[k][i] - w.r_at_wheel[k]);
@@ -111,29 +140,32 @@ impl Simulation {
             };
             Ok(())
         };
-        let solving = self
-            .contacts
+        let solving = live
             .iter()
-            .zip(held)
-            .filter(|(c, h)| !**h && super::contact::pressure_field(c).is_some())
+            .filter(|&&k| super::contact::pressure_field(&self.contacts[k]).is_some())
             .count();
-        let items = self
-            .contacts
-            .iter_mut()
-            .zip(&w.delta)
-            .zip(&w.column_gap)
-            .zip(w.column_force.iter_mut().zip(w.outputs.iter_mut()))
-            .enumerate()
-            .filter(|(k, _)| !held[*k]);
         if solving >= PARALLEL_LAWS {
             use rayon::prelude::*;
-            let items: Vec<_> = items.collect();
+            let items: Vec<_> = self
+                .contacts
+                .iter_mut()
+                .zip(&w.delta)
+                .zip(&w.column_gap)
+                .zip(w.column_force.iter_mut().zip(w.outputs.iter_mut()))
+                .enumerate()
+                .filter(|(k, _)| !held[*k])
+                .collect();
             // The first error by wheel index, whatever the thread count.
             let results: Vec<Result<(), VehicleBridgeError>> =
                 items.into_par_iter().map(evaluate).collect();
             results.into_iter().collect::<Result<(), _>>()?;
         } else {
-            items.into_iter().try_for_each(evaluate)?;
+            // The wheels taking part, in order (the first error by wheel index).
+            for &k in live {
+                let (contact, delta, gap) = (&mut self.contacts[k], &w.delta[k], &w.column_gap[k]);
+                let out = (&mut w.column_force[k], &mut w.outputs[k]);
+                evaluate((k, (((contact, delta), gap), out)))?;
+            }
         }
         for &k in live {
             let iw = self.wheel_dof[k];

@@ -2,6 +2,8 @@
 //! Picard, quasi-Newton (Sherman–Morrison / Woodbury) and Newton iterations, the
 //! extrapolated quasi-Newton start, and the floating-point floor of the contact forces.
 
+use std::ops::Range;
+
 use super::accept::{Accepted, StateUpdate};
 use super::contact::{is_point, is_rigid};
 use super::contact_eval::add_modal_load;
@@ -33,9 +35,8 @@ impl Simulation {
             return;
         }
         self.a_matrix.mul(&w.x, &mut w.res);
-        for i in 0..w.x.len() {
-            w.res[i] = w.r[i] - w.res[i];
-        }
+        let rows = &self.resting.live_rows;
+        residual_rows(rows, &w.r, &mut w.res);
         Self::zero_held(&self.resting.held_dofs, &mut w.res);
         for (a, &k) in live.iter().enumerate() {
             let iw = self.wheel_dof[k];
@@ -89,10 +90,13 @@ impl Simulation {
             &mut w.cap,
         );
         // A singular update leaves the predictor as it is (the iteration then starts there).
-        if solved.is_ok() && w.res.iter().all(|d| d.is_finite()) {
-            for (x, d) in w.x.iter_mut().zip(&w.res) {
-                *x += d;
-            }
+        // The held rows of the update are zero (they keep their state).
+        if solved.is_ok()
+            && rows
+                .iter()
+                .all(|r| w.res[r.clone()].iter().all(|d| d.is_finite()))
+        {
+            add_rows(rows, &w.res, &mut w.x);
         }
     }
 
@@ -114,8 +118,10 @@ impl Simulation {
         let w = &mut self.work;
         let e = &mut w.floor_residual;
         self.a_matrix.mul(&w.x, e);
-        for (i, ei) in e.iter_mut().enumerate() {
-            *ei = ei.abs() + w.r[i].abs();
+        for range in &self.resting.live_rows {
+            for (ei, ri) in e[range.clone()].iter_mut().zip(&w.r[range.clone()]) {
+                *ei = ei.abs() + ri.abs();
+            }
         }
         let live = &self.resting.live;
         Self::zero_held(&self.resting.held_dofs, e);
@@ -168,16 +174,26 @@ impl Simulation {
         // vehicles at rest are frozen in the stepper before it forms the step equation.
         let t_new = self.stepper.t() + dt;
         self.wheel_geometry(t_new).map_err(fatal)?;
+        // Every wheel's v is now fixed until the next attempt: the mode shapes under it and
+        // its own DOF (`evaluate_contacts`, `extrapolated_start`), or the rigid constraint's
+        // gradient of this attempt (`rigid_setup`).
+        self.work.cap.new_geometry();
         self.select_live_wheels().map_err(fatal)?;
         self.stepper
             .step_equation_into(dt, &mut self.eq)
             .map_err(|e| fatal(e.into()))?;
         self.update_a().map_err(fatal)?;
         let s = 1.0 - self.eq.alpha_f;
-        let n = self.work.x.len();
-        for i in 0..n {
-            self.work.f_ext[i] =
-                self.structure.gravity_load[i] + self.eq.alpha_f * self.contact_load[i];
+        // The rows of the vehicles at rest are not used (frozen: zero rows of the load).
+        let w = &mut self.work;
+        for range in &self.resting.moving_rows {
+            let rows = w.f_ext[range.clone()]
+                .iter_mut()
+                .zip(&self.structure.gravity_load[range.clone()])
+                .zip(&self.contact_load[range.clone()]);
+            for ((f, g), c) in rows {
+                *f = g + self.eq.alpha_f * c;
+            }
         }
         // The moving forces at t_{n+1} (their part at t_n is in `contact_load`).
         if !self.scenario.moving_forces.is_empty() {
@@ -196,8 +212,15 @@ impl Simulation {
             )
             .map_err(|e| fatal(e.into()))?;
         let c_qa = self.eq.displacement_per_acceleration;
-        for i in 0..n {
-            self.work.x[i] = self.eq.q_pred[i] + c_qa * self.stepper.a()[i];
+        let a = self.stepper.a();
+        for range in &self.resting.moving_rows {
+            let rows = self.work.x[range.clone()]
+                .iter_mut()
+                .zip(&self.eq.q_pred[range.clone()])
+                .zip(&a[range.clone()]);
+            for ((x, q), a) in rows {
+                *x = q + c_qa * a;
+            }
         }
         // A held vehicle takes the predictor with zero acceleration, q̃ = q (frozen in the
         // stepper: module `resting`).
@@ -278,11 +301,10 @@ impl Simulation {
             for &k in live {
                 w.prev_force[k] = w.outputs[k].force;
             }
-            // Residual R = A x − r − s Σ G_k, written as −R into `res`.
+            // Residual R = A x − r − s Σ G_k, written as −R into `res` (on the rows outside
+            // the held vehicles; theirs are zero).
             self.a_matrix.mul(&w.x, &mut w.res);
-            for i in 0..n {
-                w.res[i] = w.r[i] - w.res[i];
-            }
+            residual_rows(&self.resting.live_rows, &w.r, &mut w.res);
             for &k in live {
                 for j in 0..w.span_modes[k] {
                     w.res[j] += s * w.modal_load[k][j];
@@ -378,10 +400,13 @@ impl Simulation {
                     fatal: None,
                 });
             }
-            for i in 0..n {
-                w.x[i] += w.res[i];
-            }
-            if w.x.iter().any(|v| !v.is_finite()) {
+            // The held rows of the update are zero (they keep their state).
+            let rows = &self.resting.live_rows;
+            add_rows(rows, &w.res, &mut w.x);
+            if rows
+                .iter()
+                .any(|r| w.x[r.clone()].iter().any(|v| !v.is_finite()))
+            {
                 return Err(StepFailure {
                     iterations,
                     change,
@@ -453,5 +478,23 @@ impl Simulation {
             },
         )
         .map_err(fatal)
+    }
+}
+
+/// `res ← r − res` on the rows `rows` (−R from `res` = A x).
+fn residual_rows(rows: &[Range<usize>], r: &[f64], res: &mut [f64]) {
+    for range in rows {
+        for (y, ri) in res[range.clone()].iter_mut().zip(&r[range.clone()]) {
+            *y = ri - *y;
+        }
+    }
+}
+
+/// `x ← x + d` on the rows `rows`.
+fn add_rows(rows: &[Range<usize>], d: &[f64], x: &mut [f64]) {
+    for range in rows {
+        for (xi, di) in x[range.clone()].iter_mut().zip(&d[range.clone()]) {
+            *xi += di;
+        }
     }
 }

@@ -10,7 +10,8 @@
 //! in the coupling iteration (residual, capacitance groups, convergence; the force floor keeps
 //! their last value), its rows of A are held (`linalg::BlockDiagonal::hold_dense`) and its DOFs
 //! are frozen in the structural stepper (`StructuralStepper::freeze`: v = a = 0, q kept, so
-//! `x = q̃ = q`, and the predictor, history force, effective load and corrector skip its rows)
+//! `x = q̃ = q`, and the predictor, history force, effective load and corrector skip its rows;
+//! the structure keeps their rows of K q, `Structure::keep_rows`)
 //! — until the first step whose geometry puts one of its wheels on the span or on a non-zero
 //! irregularity; from then on it is stepped like every other vehicle, for good. The geometry
 //! of a step is therefore evaluated before its step equation.
@@ -28,6 +29,8 @@
 //! contacts (Hertz, BEM), without friction (the track and Radau5 paths do not use it); a
 //! vehicle is evaluated in the first step (its contact outputs are those of the static state
 //! from then on).
+
+use std::ops::Range;
 
 use super::contact::is_rigid;
 use super::scenario::CouplingSolver;
@@ -63,10 +66,20 @@ pub(super) struct Resting {
     pub(super) resting_dofs: Vec<usize>,
     /// Per wheel: its vehicle is held.
     pub(super) held_wheel: Vec<bool>,
+    /// Per wheel: its last sample was written while its vehicle was held at rest (the
+    /// samples of the following steps at rest are the same but for the step's count:
+    /// `Simulation::accept`).
+    pub(super) sampled_at_rest: Vec<bool>,
     /// The wheels taking part in the current step attempt, ascending.
     pub(super) live: Vec<usize>,
     /// The DOFs of the held vehicles (at rest or detached).
     pub(super) held_dofs: Vec<usize>,
+    /// The DOFs outside the held vehicles (the rows of the coupled iteration's residual and
+    /// update; a held vehicle's rows of the residual are zero), and outside the vehicles at
+    /// rest (the rows of the step's load and predictor: a detached vehicle needs them), as
+    /// sorted ranges.
+    pub(super) live_rows: Vec<Range<usize>>,
+    pub(super) moving_rows: Vec<Range<usize>>,
     /// Vehicle-steps at rest and detached so far (step attempts × vehicles in them).
     held_steps: u64,
     detached_steps: u64,
@@ -91,13 +104,18 @@ impl Simulation {
         r.detached.clear();
         r.resting_dofs.clear();
         r.held_wheel = vec![false; nw];
+        r.sampled_at_rest = vec![false; nw];
         r.live = (0..nw).collect();
         r.held_dofs.clear();
+        let n = self.work.x.len();
+        ranges_outside(n, &[], &mut r.live_rows);
+        ranges_outside(n, &[], &mut r.moving_rows);
         for d in 0..self.vehicles.len() {
             self.a_matrix.hold_dense(d, false);
         }
         // Nothing frozen (an empty set cannot fail).
         let _ = self.stepper.freeze(&[]);
+        self.structure.keep_rows(&[]);
     }
 
     /// Decides which vehicles are held out of the step attempt whose geometry
@@ -164,6 +182,9 @@ impl Simulation {
                     r.held_dofs.extend_from_slice(&veh.dofs);
                 }
             }
+            let n = self.work.x.len();
+            ranges_outside(n, &r.held_dofs, &mut r.live_rows);
+            ranges_outside(n, &r.resting_dofs, &mut r.moving_rows);
         }
         r.held_steps += r.part.iter().filter(|&&p| p == Part::Resting).count() as u64;
         r.detached_steps += r.detached.len() as u64;
@@ -171,6 +192,8 @@ impl Simulation {
             // The vehicles at rest are frozen in the stepper: v = a = 0, q kept, their rows
             // left out of the step's work.
             self.stepper.freeze(&self.resting.resting_dofs)?;
+            // Their rows of K q are unchanged as well (their q is).
+            self.structure.keep_rows(self.stepper.frozen());
         }
         Ok(())
     }
@@ -194,11 +217,54 @@ impl Simulation {
         self.resting.held_steps
     }
 
+    /// Whether wheel `k`'s vehicle is held at rest in the current step attempt.
+    pub(super) fn wheel_at_rest(&self, k: usize) -> bool {
+        self.wheel_vehicle[k].is_some_and(|v| self.resting.part.get(v) == Some(&Part::Resting))
+    }
+
     /// Zeroes the entries of the held vehicles' DOFs in `y` (a residual or a correction: a
     /// held vehicle keeps its state).
     pub(super) fn zero_held(held_dofs: &[usize], y: &mut [f64]) {
         for &i in held_dofs {
             y[i] = 0.0;
         }
+    }
+}
+
+/// The indices `0..n` not in `dofs`, as sorted ranges into `out` (allocates: called when the
+/// held vehicles change).
+fn ranges_outside(n: usize, dofs: &[usize], out: &mut Vec<Range<usize>>) {
+    let mut held = vec![false; n];
+    for &i in dofs {
+        held[i] = true;
+    }
+    out.clear();
+    let mut start = None;
+    for i in 0..=n {
+        match (i < n && !held[i], start) {
+            (true, None) => start = Some(i),
+            (false, Some(first)) => {
+                out.push(first..i);
+                start = None;
+            }
+            _ => {}
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::ranges_outside;
+
+    /// The complement of a DOF set as ranges: at the ends, in the middle, empty and full.
+    #[test]
+    fn ranges_outside_complement_the_dofs() {
+        let mut out = Vec::new();
+        ranges_outside(10, &[3, 4, 9, 0], &mut out);
+        assert_eq!(out, vec![1..3, 5..9]);
+        ranges_outside(4, &[], &mut out);
+        assert_eq!(out, vec![0..4]);
+        ranges_outside(3, &[2, 1, 0], &mut out);
+        assert!(out.is_empty());
     }
 }

@@ -7,6 +7,7 @@ use integrate::DenseLu;
 use super::banded::BandedLu;
 use super::{BlockDiagonal, Singular};
 
+mod entries;
 mod folding;
 
 /// Work space of [`contact_update`]: A⁻¹ĝ per wheel with its support and blocks, the
@@ -30,6 +31,10 @@ pub struct CapacitanceWork {
     blocks: Vec<Vec<usize>>,
     /// Per wheel: the key of the stored A⁻¹ĝ (A's version, the pattern and ĝ on it).
     key: Vec<SolveKey>,
+    /// Per wheel: the identity of its A⁻¹ĝ (the solve count at its last fresh solve), and
+    /// the capacitance entries kept with such identities (module `entries`).
+    g_id: Vec<u64>,
+    entries: entries::EntryCache,
     /// Per block of A: the stamp of the last solve that applied it.
     mark: Vec<u64>,
     /// Per block of A: (stamp, first wheel of this update that touched it).
@@ -80,15 +85,30 @@ struct SolveKey {
 }
 
 impl SolveKey {
+    #[inline(always)]
     fn matches(&self, version: u64, g: &[f64], pattern: &[usize]) -> bool {
-        // One pass over the pattern (indices and ĝ's bits together).
-        self.version == version
-            && self.pattern.len() == pattern.len()
-            && pattern
+        if self.version != version || self.pattern.len() != pattern.len() {
+            return false;
+        }
+        // A wheel on the span: the modes 0..m, then its own DOF (as in `pattern_dot`; both
+        // patterns ascending, so each is determined by its length and last index). Every bit
+        // of ĝ equal: the OR of the XORs over the contiguous modes is zero.
+        if let (Some(m), &[0, .., m_minus_1, last]) = (contiguous_modes(&self.pattern), pattern)
+            && m_minus_1 + 2 == pattern.len()
+            && self.pattern[m] == last
+        {
+            let modes = g[..m]
                 .iter()
-                .zip(&self.pattern)
-                .zip(&self.g)
-                .all(|((&i, &stored), &bits)| i == stored && g[i].to_bits() == bits)
+                .zip(&self.g[..m])
+                .fold(0, |d, (x, &bits)| d | (x.to_bits() ^ bits));
+            return modes | (g[last].to_bits() ^ self.g[m]) == 0;
+        }
+        // One pass over the pattern (indices and ĝ's bits together).
+        pattern
+            .iter()
+            .zip(&self.pattern)
+            .zip(&self.g)
+            .all(|((&i, &stored), &bits)| i == stored && g[i].to_bits() == bits)
     }
 
     fn set(&mut self, version: u64, g: &[f64], pattern: &[usize]) {
@@ -117,6 +137,7 @@ impl CapacitanceWork {
             self.on_support.clear();
             self.blocks.clear();
             self.key.clear();
+            self.g_id.clear();
         }
         while self.ainv_g.len() < k {
             self.ainv_g.push(vec![0.0; n]);
@@ -124,6 +145,7 @@ impl CapacitanceWork {
             self.on_support.push(Vec::new());
             self.blocks.push(Vec::new());
             self.key.push(SolveKey::default());
+            self.g_id.push(0);
         }
         if self.mark.len() != blocks {
             self.mark = vec![0; blocks];
@@ -160,6 +182,7 @@ impl CapacitanceWork {
     /// stamp (counted as a solve).
     fn start_wheel(&mut self, wheel: usize, g: &[f64], pattern: &[usize]) {
         self.solves += 1;
+        self.g_id[wheel] = self.solves;
         let x = &mut self.ainv_g[wheel];
         for &i in &self.support[wheel] {
             x[i] = 0.0;
@@ -392,16 +415,21 @@ pub fn contact_update(
             df[c] = (v_dot(c, x) + delta_tilde[c]) / den;
             continue;
         }
-        // Capacitance matrix of the group and its right-hand side.
-        work.rhs.clear();
+        // Capacitance matrix of the group (its entries s vᵀA⁻¹ĝ kept while their inputs are
+        // the same, module `entries`) and its right-hand side.
+        let range = work.group_start[g]..work.group_start[g + 1];
+        work.group_entries(g, range.clone(), active, s, v, pattern);
+        let entries = work.entries.of_group(g);
+        let members = &work.order[range];
         work.cap.clear();
-        for &cr in members {
-            let (pr, vr) = (pattern[active[cr]].as_ref(), v[active[cr]].as_ref());
-            for &cq in members {
+        for (r, &cr) in members.iter().enumerate() {
+            for (q, &cq) in members.iter().enumerate() {
                 let diag = if cr == cq { compliance[cr] } else { 0.0 };
-                let y = &work.ainv_g[active[cq]];
-                work.cap.push(diag + s * pattern_dot(pr, vr, y));
+                work.cap.push(diag + entries[r * kg + q]);
             }
+        }
+        work.rhs.clear();
+        for &cr in members {
             work.rhs.push(v_dot(cr, x) + delta_tilde[cr]);
         }
         let solved = if kg <= SMALL_GROUP {
@@ -445,6 +473,16 @@ pub fn contact_update(
         }
     }
     Ok(())
+}
+
+/// The number of modes m if the ascending `pattern` is the modes `0..m` followed by one more
+/// index (a wheel on the span), else `None`.
+#[inline(always)]
+fn contiguous_modes(pattern: &[usize]) -> Option<usize> {
+    match pattern {
+        &[0, .., m_minus_1, _] if m_minus_1 + 2 == pattern.len() => Some(pattern.len() - 1),
+        _ => None,
+    }
 }
 
 /// `vᵀy` for a `v` zero outside `pattern` (ascending indices), summed in pattern order.
