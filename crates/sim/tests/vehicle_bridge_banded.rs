@@ -102,20 +102,12 @@ fn rake_band_solve_equals_dense_lu() {
     }
 }
 
-/// The rake of HSLM-A1 over 3 modes, its first 4 wheels on the span (ĝ, v on the modes and the
-/// wheel), the others off it (the wheel only), one of those rigid and two out of contact. The
-/// update folds the compliant off-span wheels into the rake's band and keeps the rest in the
-/// capacitance form; it must equal the dense bordered solve (faer LU of the whole system) to
-/// 1e-12 in Δx and ΔF, also when the work space is reused with other compliances, and when
-/// the same compliances come again (the band's factorisation is then reused).
-#[test]
-fn folded_update_equals_dense_for_a_rake() {
-    let mut rng = ChaCha8Rng::seed_from_u64(17);
-    let modes = 3;
-    let (a, indices, own) = rake_system(1, modes);
-    let n = a.dimension();
-    let wheel_dofs: Vec<usize> = indices[own..].to_vec();
-    let nw = wheel_dofs.len();
+/// The wheels' ĝ, v and patterns for the rake of [`rake_system`]: the first 4 on the span (ĝ, v
+/// on the modes, v = −w(x) with random shapes, ĝ within 5 % of it as for a contact of
+/// several columns, and 1 on the wheel), the others off it (the wheel only).
+type Wheels = (Vec<Vec<f64>>, Vec<Vec<f64>>, Vec<Vec<usize>>);
+
+fn rake_wheels(rng: &mut ChaCha8Rng, n: usize, modes: usize, wheel_dofs: &[usize]) -> Wheels {
     let mut gs = Vec::new();
     let mut vs = Vec::new();
     let mut patterns = Vec::new();
@@ -137,6 +129,24 @@ fn folded_update_equals_dense_for_a_rake() {
         vs.push(v);
         patterns.push(pattern);
     }
+    (gs, vs, patterns)
+}
+
+/// The rake of HSLM-A1 over 3 modes, its first 4 wheels on the span (ĝ, v on the modes and the
+/// wheel), the others off it (the wheel only), one of those rigid and two out of contact. The
+/// update folds the compliant off-span wheels into the rake's band and keeps the rest in the
+/// capacitance form; it must equal the dense bordered solve (faer LU of the whole system) to
+/// 1e-12 in Δx and ΔF, also when the work space is reused with other compliances, and when
+/// the same compliances come again (the band's factorisation is then reused).
+#[test]
+fn folded_update_equals_dense_for_a_rake() {
+    let mut rng = ChaCha8Rng::seed_from_u64(17);
+    let modes = 3;
+    let (a, indices, own) = rake_system(1, modes);
+    let n = a.dimension();
+    let wheel_dofs: Vec<usize> = indices[own..].to_vec();
+    let nw = wheel_dofs.len();
+    let (gs, vs, patterns) = rake_wheels(&mut rng, n, modes, &wheel_dofs);
     let rigid = 20;
     let active: Vec<usize> = (0..nw).filter(|&k| k != 7 && k != 30).collect();
     let delta: Vec<f64> = active
@@ -212,6 +222,92 @@ fn folded_update_equals_dense_for_a_rake() {
     let folded = active.iter().filter(|&&k| k >= 4 && k != rigid).count() as u64;
     assert_eq!(work.fold_count(), 3 * folded);
     assert_eq!(work.fold_reuse_count(), 1);
+    // Round 2 took the A_c⁻¹ĝ on the band of every wheel not folded (the 4 on the span and the
+    // rigid one) from round 1, where they were solved with the same factorisation.
+    assert_eq!(work.column_reuse_count(), 5);
+}
+
+/// The chord step (`CapacitanceWork::set_fold_tolerance`): with the off-span wheels'
+/// stiffnesses changed by 5e-4 (relative) the band's factorisation with the old ones is kept
+/// (tolerance 1e-3), so one update is no longer the exact solve of the linear system
+/// (A + s Σ k_c ĝ_c v_cᵀ) x = b; the iteration x ← x + update(b − (A + s Σ k_c ĝ_c v_cᵀ) x)
+/// converges to it (the dense bordered solve) to 1e-12 within 4 updates, and with tolerance 0
+/// the factorisation is redone and the first update is already exact.
+#[test]
+fn chord_updates_converge_to_the_dense_solve() {
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    let modes = 3;
+    let (a, indices, own) = rake_system(1, modes);
+    let n = a.dimension();
+    let wheel_dofs: Vec<usize> = indices[own..].to_vec();
+    let (gs, vs, patterns) = rake_wheels(&mut rng, n, modes, &wheel_dofs);
+    let active: Vec<usize> = (0..wheel_dofs.len()).collect();
+    let zero = vec![0.0; active.len()];
+    let b: Vec<f64> = (0..n).map(|_| rng.random::<f64>() - 0.5).collect();
+    let old: Vec<f64> = active
+        .iter()
+        .map(|_| 1.0 / (5e8 + 1e9 * rng.random::<f64>()))
+        .collect();
+    let new: Vec<f64> = old.iter().map(|c| c / (1.0 + 5e-4)).collect();
+    let s = 0.8;
+    let mut exact = b.clone();
+    let mut df = vec![0.0; active.len()];
+    dense_contact_update(
+        &a,
+        s,
+        &gs,
+        &vs,
+        &active,
+        &new,
+        &zero,
+        &mut exact,
+        &mut df,
+        &mut DenseWork::default(),
+    )
+    .unwrap();
+    for tolerance in [1e-3, 0.0] {
+        let mut work = CapacitanceWork::default();
+        work.set_fold_tolerance(tolerance);
+        // Factorised with the old stiffnesses.
+        let mut x = b.clone();
+        contact_update(
+            &a, s, &gs, &vs, &patterns, &active, &old, &zero, &mut x, &mut df, &mut work,
+        )
+        .unwrap();
+        let mut x = vec![0.0; n];
+        let mut errors = Vec::new();
+        for _ in 0..4 {
+            // −R = b − A x − s Σ k_c ĝ_c v_cᵀ x.
+            let mut res = vec![0.0; n];
+            a.mul(&x, &mut res);
+            for (r, bi) in res.iter_mut().zip(&b) {
+                *r = bi - *r;
+            }
+            for (c, &k) in active.iter().enumerate() {
+                let vx: f64 = vs[k].iter().zip(&x).map(|(v, y)| v * y).sum();
+                for (r, g) in res.iter_mut().zip(&gs[k]) {
+                    *r -= s * g * vx / new[c];
+                }
+            }
+            contact_update(
+                &a, s, &gs, &vs, &patterns, &active, &new, &zero, &mut res, &mut df, &mut work,
+            )
+            .unwrap();
+            for (xi, d) in x.iter_mut().zip(&res) {
+                *xi += d;
+            }
+            errors.push(rel(&x, &exact));
+        }
+        println!("fold tolerance {tolerance:e}: errors {errors:?}");
+        if tolerance > 0.0 {
+            assert_eq!(work.fold_reuse_count(), 4);
+            assert!(errors[0] > 1e-9 && errors[0] < 1e-3, "{errors:?}");
+            assert!(errors[3] < 1e-12, "{errors:?}");
+        } else {
+            assert_eq!(work.fold_reuse_count(), 3);
+            assert!(errors[0] < 1e-12, "{errors:?}");
+        }
+    }
 }
 
 /// `|A⁻¹| e` at the wheels only (the force floor's need) equals the full product there bit for

@@ -386,7 +386,13 @@ impl Simulation {
             compliance: vec![0.0; nw],
             delta_tilde: vec![0.0; nw],
             df: vec![0.0; nw],
-            cap: CapacitanceWork::new(n, nw),
+            cap: {
+                let mut cap = CapacitanceWork::new(n, nw);
+                if scenario.coupling.solver == super::CouplingSolver::QuasiNewton {
+                    cap.set_fold_tolerance(super::coupling::FOLD_TOLERANCE);
+                }
+                cap
+            },
             dense: DenseWork::default(),
             floor_residual: vec![0.0; n],
             floor_ainv_g: vec![0.0; n],

@@ -11,6 +11,12 @@ use super::linalg::{contact_update, dense_contact_update};
 use super::step::StepFailure;
 use super::{CouplingSolver, Simulation, VehicleBridgeError};
 
+/// The quasi-Newton iteration keeps the factorisation of an articulated rake's band with its
+/// folded off-span wheels while each of their contact stiffnesses is within this relative
+/// change of the one factorised (`linalg::CapacitanceWork::set_fold_tolerance`): a chord
+/// step for those wheels, whose error contracts by at least this factor per update.
+pub(super) const FOLD_TOLERANCE: f64 = 1e-3;
+
 impl Simulation {
     /// Quasi-Newton start without a contact evaluation: every contact law is replaced by its
     /// linearisation at the end of the previous step, `F ≈ F_n + k_n (δ − δ_n)`, with the

@@ -72,6 +72,18 @@ pub struct CapacitanceWork {
     batch: Vec<usize>,
     rows: Vec<usize>,
     many_buf: Vec<f64>,
+    /// Per dense block: the generation of `fold_lu` (unique, 0 for none valid).
+    fold_gen: Vec<u64>,
+    /// The source of generations.
+    fold_gens: u64,
+    /// Relative change of a folded wheel's diagonal addition within which the factorisation
+    /// of the folded block is kept ([`Self::set_fold_tolerance`]; 0: reused only bit for bit).
+    fold_tolerance: f64,
+    /// Per wheel: its A_c⁻¹ĝ on a folded block, kept with what it was computed from
+    /// (`folding::FoldColumn`).
+    fold_column: Vec<folding::FoldColumn>,
+    /// Wheel columns on folded blocks reused (statistics).
+    column_reused: u64,
 }
 
 /// What a stored A⁻¹ĝ was computed from.
@@ -138,8 +150,10 @@ impl CapacitanceWork {
             self.blocks.clear();
             self.key.clear();
             self.g_id.clear();
+            self.fold_column.clear();
         }
         while self.ainv_g.len() < k {
+            self.fold_column.push(folding::FoldColumn::default());
             self.ainv_g.push(vec![0.0; n]);
             self.support.push(Vec::new());
             self.on_support.push(Vec::new());
@@ -294,7 +308,11 @@ fn lu_of_size(lus: &mut Vec<DenseLu<f64>>, m: usize) -> &mut DenseLu<f64> {
 /// with A_c in place of A, and each folded wheel's ΔF_c = (v Δx_i + δ̃_c)/compliance_c. The
 /// rake's capacitance group then holds its wheels on the span only, instead of all of them
 /// (42 for HSLM-A1, a dense 42 × 42 factorisation at every update). The same linear system,
-/// solved differently: equal to round-off (tested against the dense bordered solve).
+/// solved differently: equal to round-off (tested against the dense bordered solve). With a
+/// fold tolerance (`CapacitanceWork::set_fold_tolerance`, used by the quasi-Newton
+/// iteration) a factorisation from folded stiffnesses within that relative change is kept:
+/// the update is then a chord step for the folded wheels (the iteration converges to the
+/// same solution; `tests/vehicle_bridge_banded.rs`).
 ///
 /// Arguments: `pattern[c]` lists the indices where wheel c's vectors can be non-zero, in
 /// ascending order; `active` lists the wheels taking part (indices into `g_hat`, `v`, `pattern`);
