@@ -73,21 +73,24 @@ def columns(p) -> dict:
     return {k: p[k].to_numpy() for k in p.columns}
 
 
-def test_sweep_equals_the_cli(tmp_path):
-    path = EXAMPLES / "sweep_hslm.toml"
+def sweep_equal_to_the_cli(example: str, tmp_path) -> dict:
+    """The sweep of an example from Python, checked equal to the CLI's summary.json."""
+    path = EXAMPLES / example
     local = dyncontact.sweep(path)
     cli = cli_json("sweep", str(path), "--out", str(tmp_path))
     assert without_wall_time(local) == without_wall_time(cli)
+    return local
+
+
+def test_sweep_equals_the_cli(tmp_path):
+    local = sweep_equal_to_the_cli("sweep_hslm.toml", tmp_path)
     table = columns(local["passages"])
     assert len(table["train"]) == local["runs"] * len(local["points"])
     assert np.max(table["max_acceleration_m_s2"]) == max(t["max_acceleration"] for t in local["trains"])
 
 
 def test_interaction_sweep_reports_the_vehicles_as_the_cli(tmp_path):
-    path = EXAMPLES / "sweep_interaction.toml"
-    local = dyncontact.sweep(path)
-    cli = cli_json("sweep", str(path), "--out", str(tmp_path))
-    assert without_wall_time(local) == without_wall_time(cli)
+    local = sweep_equal_to_the_cli("sweep_interaction.toml", tmp_path)
     table = columns(local["passages"])
     for t, train in enumerate(local["trains"]):
         rows = table["train"] == t
