@@ -113,3 +113,33 @@ fn a_corrugation_without_start_has_its_phase_at_x_zero() {
         );
     }
 }
+
+#[test]
+fn the_default_output_point_is_never_a_support() {
+    // A continuous FE bridge whose middle is a support (spans of 10, 5 and 15 m on 30 m): the
+    // deck does not move there, so the default output point is the midspan of the longest
+    // span (22.5 m), with a note; the bridge's middle when it is not a support (spans 12 and
+    // 18 m); a given point is kept as given.
+    let scenario = |supports: &str, output: &str| {
+        let text = format!(
+            "kind = \"vehicle_bridge\"\n[bridge]\nlength = 30.0\nEI = 8.323e9\nmass_per_length = 2303.0\nelements = 60\nsupports_at = {supports}\nmodes = 6\n[vehicle]\nspeed = 20.0\n[[vehicle.wheels]]\nposition = 0.0\nwheel_mass = 600.0\n{output}"
+        );
+        match config::load(&text, Path::new("."), &LoadOptions::default()) {
+            Ok(ScenarioConfig::VehicleBridge(c)) => *c,
+            Ok(_) => panic!("not a vehicle_bridge scenario"),
+            Err(e) => panic!("{e}"),
+        }
+    };
+    let c = scenario("[0.0, 10.0, 15.0, 30.0]", "");
+    assert_eq!(c.scenario.output_point, 22.5);
+    assert!(
+        c.warnings.iter().any(|w| w.contains("longest span")),
+        "{:?}",
+        c.warnings
+    );
+    let c = scenario("[0.0, 12.0, 30.0]", "");
+    assert_eq!(c.scenario.output_point, 15.0);
+    assert!(c.warnings.is_empty(), "{:?}", c.warnings);
+    let c = scenario("[0.0, 10.0, 15.0, 30.0]", "[output]\npoint = 15.0\n");
+    assert_eq!(c.scenario.output_point, 15.0);
+}

@@ -15,7 +15,7 @@
 //! to = 116.6667
 //! step = 1.388889
 //! [output]
-//! points = [10.0]          # default: midspan
+//! points = [10.0]          # default: the midspan of each span
 //! [check]
 //! track = "ballasted"      # 3.5 m/s²; "ballastless": 5 m/s²
 //! ```
@@ -225,7 +225,8 @@ pub fn build(file: SweepFile, base: &std::path::Path) -> Result<SweepConfig, Con
         None => FREE_VIBRATION_PERIODS / first_frequency,
     };
     let points = match file.output.as_ref().and_then(|o| o.points.clone()) {
-        None => vec![0.5 * length],
+        // Issue #12: the midspan of each span (an FE bridge's spans between its supports).
+        None => bridge.span_midpoints.clone(),
         Some(p) => {
             checks::count("output.points", p.len(), 1, 1000)?;
             if let Some(x) = p

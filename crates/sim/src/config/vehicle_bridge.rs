@@ -308,6 +308,7 @@ pub fn build_in(file: VehicleBridgeFile, base: &Path) -> Result<VehicleBridgeCon
     }
     let bridge = file.bridge.build()?;
     let length = bridge.basis.length();
+    let bridge_output_point = bridge.default_output_point();
 
     let c = file.contact.as_ref();
     let (contact, geometry) = contact_of(c, wheels.len(), Some(base))?;
@@ -345,7 +346,7 @@ pub fn build_in(file: VehicleBridgeFile, base: &Path) -> Result<VehicleBridgeCon
         Some(spec) => Integrator::Radau5(spec),
         None => Integrator::Structural(params.method(method_name, &["radau5"])?),
     };
-    let warnings = Vec::new();
+    let mut warnings = Vec::new();
     let dt = integ.and_then(|i| i.dt).unwrap_or(f64::NAN);
     let duration = integ.and_then(|i| i.duration);
 
@@ -377,7 +378,14 @@ pub fn build_in(file: VehicleBridgeFile, base: &Path) -> Result<VehicleBridgeCon
         MAX_SNAPSHOTS,
     )?;
     let scenario = Scenario {
-        output_point: out.and_then(|o| o.point).unwrap_or(0.5 * length),
+        output_point: match out.and_then(|o| o.point) {
+            Some(x) => x,
+            None => {
+                let (x, note) = bridge_output_point;
+                warnings.extend(note);
+                x
+            }
+        },
         bridge: bridge.basis,
         damping: bridge.damping,
         wheels,
