@@ -99,12 +99,8 @@ pub struct Bridge {
     pub roots: Option<Vec<f64>>,
     /// One-line description for reports.
     pub description: String,
-    /// The midpoint of each span between consecutive supports \[m\] (an analytic beam: L/2;
-    /// an FE beam: between its pinned, clamped and elastic supports in order, or L/2 with
-    /// fewer than two): the default output points of sweeps and moving loads.
-    pub span_midpoints: Vec<f64>,
-    /// The positions of an FE beam's point supports (pinned, clamped, elastic), sorted \[m\]
-    /// (empty for an analytic beam, whose supports are its ends).
+    /// The positions of an FE beam's point supports (pinned, clamped, elastic), sorted, each
+    /// once \[m\] (empty for an analytic beam, whose supports are its ends).
     pub support_positions: Vec<f64>,
 }
 
@@ -303,7 +299,6 @@ impl BridgeSpec {
                 "analytic {} beam, L = {length} m, EI = {ei:.4e} N m², ρA = {mass} kg/m, {n_modes} modes",
                 self.supports.as_deref().unwrap_or("simply_supported")
             ),
-            span_midpoints: vec![0.5 * length],
             support_positions: Vec::new(),
         })
     }
@@ -421,31 +416,32 @@ impl BridgeSpec {
                 sections.len(),
                 supports.len()
             ),
-            span_midpoints: span_midpoints(supports.iter().map(|s| s.x), total),
             support_positions: {
                 let mut xs: Vec<f64> = supports.iter().map(|s| s.x).collect();
                 xs.sort_by(f64::total_cmp);
+                xs.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * total);
                 xs
             },
         })
     }
 }
 
-/// The midpoints of the spans between consecutive support positions `xs` (any order;
-/// coinciding positions count once), or `[length / 2]` with fewer than two supports.
-fn span_midpoints(xs: impl Iterator<Item = f64>, length: f64) -> Vec<f64> {
-    let mut xs: Vec<f64> = xs.collect();
-    xs.sort_by(f64::total_cmp);
-    xs.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * length);
-    let mids: Vec<f64> = xs.windows(2).map(|w| 0.5 * (w[0] + w[1])).collect();
-    if mids.is_empty() {
-        vec![0.5 * length]
-    } else {
-        mids
-    }
-}
-
 impl Bridge {
+    /// The midpoint of each span between consecutive supports \[m\] (an analytic beam, or an
+    /// FE beam with fewer than two supports: L/2): the default output points of a sweep.
+    pub fn span_midpoints(&self) -> Vec<f64> {
+        let mids: Vec<f64> = self
+            .support_positions
+            .windows(2)
+            .map(|w| 0.5 * (w[0] + w[1]))
+            .collect();
+        if mids.is_empty() {
+            vec![0.5 * self.basis.length()]
+        } else {
+            mids
+        }
+    }
+
     /// The default output point of a single-point run (`vehicle_bridge`): the bridge's middle
     /// L/2, unless that is a support of a continuous FE bridge (where the deck does not move):
     /// then the midspan of its longest span (the first of equal ones), with a note saying so.
@@ -459,10 +455,8 @@ impl Bridge {
         {
             return (middle, None);
         }
-        let mut xs = self.support_positions.clone();
-        xs.dedup_by(|a, b| (*a - *b).abs() <= 1e-9 * length);
         let (mut best, mut span) = (middle, 0.0);
-        for w in xs.windows(2) {
+        for w in self.support_positions.windows(2) {
             if w[1] - w[0] > span + 1e-9 * length {
                 (best, span) = (0.5 * (w[0] + w[1]), w[1] - w[0]);
             }

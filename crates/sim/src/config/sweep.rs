@@ -226,7 +226,7 @@ pub fn build(file: SweepFile, base: &std::path::Path) -> Result<SweepConfig, Con
     };
     let points = match file.output.as_ref().and_then(|o| o.points.clone()) {
         // Issue #12: the midspan of each span (an FE bridge's spans between its supports).
-        None => bridge.span_midpoints.clone(),
+        None => bridge.span_midpoints(),
         Some(p) => {
             checks::count("output.points", p.len(), 1, 1000)?;
             if let Some(x) = p
