@@ -143,3 +143,29 @@ fn the_default_output_point_is_never_a_support() {
     let c = scenario("[0.0, 10.0, 15.0, 30.0]", "[output]\npoint = 15.0\n");
     assert_eq!(c.scenario.output_point, 15.0);
 }
+
+#[test]
+fn the_series_memory_check_counts_the_recorded_columns() {
+    // The recorded time series is refused when it would exceed the memory limit, estimated
+    // from the columns really written (t, the bridge, per wheel; before 2026-11-27 a rough
+    // 5 + 12 values per wheel, which refused runs that fit). Two Manchester cars: 8 wheels.
+    let width = sim::vehicle_bridge_series::columns(8, false).len() as f64;
+    let limit_rows = sim::config::checks::MAX_MEMORY_BYTES / (8.0 * width);
+    for (factor, accepted) in [(0.97, true), (1.03, false)] {
+        let duration = factor * limit_rows * 1e-4;
+        let text = format!(
+            "{}\nduration = {duration}\n[output]\nevery = 1\n",
+            example("train_bridge.toml")
+        );
+        let result = config::load(&text, Path::new("."), &LoadOptions::default());
+        match (accepted, result) {
+            (true, Ok(_)) => {}
+            (false, Err(e)) => {
+                let e = e.to_string();
+                assert!(e.contains("recorded time series (output.every)"), "{e}");
+            }
+            (true, Err(e)) => panic!("refused at {factor} of the limit: {e}"),
+            (false, Ok(_)) => panic!("accepted at {factor} of the limit"),
+        }
+    }
+}

@@ -411,7 +411,11 @@ pub fn build_in(file: VehicleBridgeFile, base: &Path) -> Result<VehicleBridgeCon
     }
     let every = every_given
         .unwrap_or_else(|| default_every(&scenario, file.traction.is_some(), file.track.is_some()));
-    check_run_length(&scenario, every)?;
+    check_run_length(
+        &scenario,
+        every,
+        series_width(&scenario, file.traction.is_some(), file.track.is_some()),
+    )?;
     check_implicit(&scenario)?;
     check_coupling(&scenario)?;
     let traction = traction(file.traction.as_ref())?;
@@ -603,11 +607,7 @@ pub const DEFAULT_SERIES_VALUES: f64 = 4e6;
 /// [`crate::vehicle_bridge_series::columns`], with the track's) within
 /// [`DEFAULT_SERIES_VALUES`].
 pub fn default_every(s: &Scenario, traction: bool, track: bool) -> usize {
-    let wheels = s.wheels.len();
-    let mut width = crate::vehicle_bridge_series::columns(wheels, traction).len();
-    if track {
-        width += crate::vehicle_bridge_series::track_columns(wheels).len();
-    }
+    let width = series_width(s, traction, track);
     let rows = (end_time(s) / s.dt).ceil() + 2.0;
     let every = (rows * width as f64 / DEFAULT_SERIES_VALUES).ceil();
     if every.is_finite() && every >= 1.0 {
@@ -617,9 +617,20 @@ pub fn default_every(s: &Scenario, traction: bool, track: bool) -> usize {
     }
 }
 
+/// The values per recorded step of the time series: its columns
+/// ([`crate::vehicle_bridge_series::columns`]) and, on a track, the track's.
+fn series_width(s: &Scenario, traction: bool, track: bool) -> usize {
+    let wheels = s.wheels.len();
+    let mut width = crate::vehicle_bridge_series::columns(wheels, traction).len();
+    if track {
+        width += crate::vehicle_bridge_series::track_columns(wheels).len();
+    }
+    width
+}
+
 /// Steps, output rows and the irregularity's setup work of the run, refused when absurd (the
-/// work of the steps: [`super::cost`]).
-fn check_run_length(s: &Scenario, every: usize) -> Result<(), ConfigError> {
+/// work of the steps: [`super::cost`]); `width` values per recorded row.
+fn check_run_length(s: &Scenario, every: usize, width: usize) -> Result<(), ConfigError> {
     let end = end_time(s);
     let steps = checks::steps(
         "the run (integrator.duration or the passage) at integrator.dt",
@@ -627,11 +638,10 @@ fn check_run_length(s: &Scenario, every: usize) -> Result<(), ConfigError> {
     )?;
     let rows = steps / every as f64 + 2.0;
     checks::output_rows("the run with output.every", rows)?;
-    // t, midspan (3), iterations, per wheel about 12 values.
     checks::memory(
         "the recorded time series (output.every)",
         rows,
-        8.0 * (5.0 + 12.0 * s.wheels.len() as f64),
+        8.0 * width as f64,
     )?;
     if let Irregularity::Random(p) = &s.irregularity {
         let w_max = p.wavenumbers.iter().copied().fold(0.0, f64::max);
