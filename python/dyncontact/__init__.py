@@ -300,7 +300,8 @@ def run(scenario: Case) -> Dict[str, Any]:
     released; Ctrl-C raises ``KeyboardInterrupt``). Returns ``{"summary": dict, "timeseries":
     table}``: the summary holds the run's key numbers under the names of the CLI's
     ``summary.json`` (``max_midspan_deflection`` [m], ``max_midspan_acceleration`` [m/s²],
-    ``dynamic_amplification``, ``contact`` (``max_force``, ``min_force`` [N], ``max_pressure``
+    ``dynamic_amplification``, ``points`` (with ``[output] points``: per point ``x`` [m],
+    ``max_deflection`` [m], ``max_acceleration`` [m/s²]), ``contact`` (``max_force``, ``min_force`` [N], ``max_pressure``
     [Pa], ``loss_of_contact_events``, ``max_unloading_ratio``; BEM contact also
     ``full_solves``, ``factor_solves``, ``reused_evaluations``, ``max_reuse_error_estimate``,
     ``table_evaluations``, ``table_solves``), ``vehicle``, ``solver``,
@@ -309,7 +310,8 @@ def run(scenario: Case) -> Dict[str, Any]:
     ``max_bogie_acceleration`` [m/s²]), ``train`` (``name``, ``axles``, ``length`` [m],
     ``mass`` [kg]) and ``comfort`` (EN 1990 A2 level)); the time series
     has the columns of ``timeseries.csv`` (``t_s`` [s], ``deflection_midspan_m`` [m], ...,
-    ``contact_force`` [N] per wheel), one row per recorded step (``[output] every``), as a
+    ``contact_force`` [N] per wheel, the response points' and, for trains, the car bodies'
+    accelerations), one row per recorded step (``[output] every``), as a
     pandas DataFrame when pandas is installed, else a dict of float64 arrays.
 
     ``kind = "ball_drop"`` and ``kind = "moving_load"`` run the same way (GIL released, Ctrl-C

@@ -4,7 +4,7 @@
 use numpy::{PyArray1, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyString};
+use pyo3::types::{PyDict, PyList, PyString};
 
 use crate::SolverError;
 use crate::guard::{interruptible, released};
@@ -217,38 +217,22 @@ fn run_vehicle_bridge(text: &str, base: &str, stop: &std::sync::atomic::AtomicBo
         ScenarioConfig::MovingLoad(config) => return run_moving_load(*config, stop),
         other => return RunOutcome::Kind(other.kind()),
     };
+    let mut config = *config;
+    let parts = config.take_parts();
     let sim::config::vehicle_bridge::VehicleBridgeConfig {
         scenario,
-        vehicles,
-        traction,
         every,
         warnings,
         train,
-        track,
         ..
-    } = *config;
-    let built = match track {
-        Some(track) => Simulation::with_track(scenario, vehicles, track),
-        None => Simulation::with_vehicles(scenario, vehicles),
-    };
-    let mut sim = match built {
+    } = config;
+    let mut sim = match Simulation::with_parts(scenario, parts) {
         Ok(s) => s,
         Err(e) => return RunOutcome::Invalid(e.to_string()),
     };
-    if let Some(spec) = traction
-        && let Err(e) = sim.set_traction(spec)
-    {
-        return RunOutcome::Invalid(e.to_string());
-    }
     let every = every.max(1);
     let steps = sim.planned_steps();
-    let mut columns =
-        sim::vehicle_bridge_series::columns(sim.wheels().len(), sim.traction().is_some());
-    if sim.track_sample().is_some() {
-        columns.extend(sim::vehicle_bridge_series::track_columns(
-            sim.wheels().len(),
-        ));
-    }
+    let columns = sim::vehicle_bridge_series::SeriesLayout::of(&sim).columns();
     let width = columns.len();
     let rows = steps / every + 2;
     if rows.saturating_mul(width) > MAX_SERIES_VALUES {
@@ -259,18 +243,7 @@ fn run_vehicle_bridge(text: &str, base: &str, stop: &std::sync::atomic::AtomicBo
     let mut series = Vec::with_capacity(rows * width);
     let mut line = Vec::with_capacity(width);
     let mut record = |sim: &Simulation, iterations: usize, series: &mut Vec<f64>| {
-        let traction = sim.traction().map(|t| t.samples()).unwrap_or(&[]);
-        sim::vehicle_bridge_series::row(
-            sim.t(),
-            sim.output_point_response(),
-            iterations,
-            sim.wheels(),
-            traction,
-            &mut line,
-        );
-        if let Some(track) = sim.track_sample() {
-            sim::vehicle_bridge_series::track_row(track, &mut line);
-        }
+        sim::vehicle_bridge_series::series_row(sim, iterations, &mut line);
         series.extend_from_slice(&line);
     };
     record(&sim, 0, &mut series);
@@ -378,6 +351,17 @@ pub fn run_text<'py>(py: Python<'py>, text: &str, base: &str) -> PyResult<Bound<
     s.set_item("time_reached", summary.time_reached)?;
     s.set_item("max_midspan_deflection", summary.deflection.max_abs())?;
     s.set_item("max_midspan_acceleration", summary.acceleration.max_abs())?;
+    if !summary.points.is_empty() {
+        let points = PyList::empty(py);
+        for p in &summary.points {
+            let d = PyDict::new(py);
+            d.set_item("x", p.x)?;
+            d.set_item("max_deflection", p.deflection.max_abs())?;
+            d.set_item("max_acceleration", p.acceleration.max_abs())?;
+            points.append(d)?;
+        }
+        s.set_item("points", points)?;
+    }
     s.set_item(
         "max_quasi_static_deflection",
         summary.max_quasi_static_deflection,

@@ -18,7 +18,13 @@ def columns(t) -> dict:
 
 
 @pytest.mark.parametrize(
-    "name", ["vehicle_bridge_biggs.toml", "vehicle_bridge_default.toml", "train_bridge.toml"]
+    "name",
+    [
+        "vehicle_bridge_biggs.toml",
+        "vehicle_bridge_default.toml",
+        "train_bridge.toml",
+        "vehicle_bridge_two_span_flat.toml",
+    ],
 )
 def test_vehicle_bridge_run_equals_the_cli(name, tmp_path):
     path = EXAMPLES / name
@@ -37,8 +43,9 @@ def test_vehicle_bridge_run_equals_the_cli(name, tmp_path):
         assert (key in s["contact"]) == (key in cli["contact"]), key
         if key in cli["contact"]:
             assert s["contact"][key] == cli["contact"][key], key
-    # The train's part (trains only): per-vehicle peaks, the train, the comfort level.
-    for key in ("vehicles", "train", "comfort"):
+    # The train's part (trains only): per-vehicle peaks, the train, the comfort level; the
+    # response points of `[output] points` (the two-span example).
+    for key in ("vehicles", "train", "comfort", "points"):
         assert (key in s) == (key in cli), key
         if key in cli:
             assert s[key] == cli[key], key

@@ -106,23 +106,15 @@ fn bench_bem_train(default_scenario: &str) -> Result<()> {
         toml_table(default_scenario, "integrator")?,
         toml_table(default_scenario, "coupling")?,
     );
-    let config = sim::config::vehicle_bridge::parse(&text)?;
+    let mut config = sim::config::vehicle_bridge::parse(&text)?;
     println!(
         "\n8 Manchester cars (32 wheels), BEM 32 x 32 at every wheel, reuse_tol = {BENCH_REUSE_TOL:.0e}, \
          the default bridge, 83.33 m/s, dt = {:e} s, the first 1 s; {} rayon threads",
         config.scenario.dt,
         rayon::current_num_threads()
     );
-    let outcome = simulate_full(
-        config.scenario,
-        config.vehicles,
-        config.train,
-        None,
-        config.track,
-        usize::MAX,
-        0,
-        None,
-    )?;
+    let parts = config.take_parts();
+    let outcome = simulate_full(config.scenario, parts, config.train, usize::MAX, 0, None)?;
     let s = &outcome.summary;
     println!(
         "{:>8} {:>11} {:>12} {:>13} {:>13} {:>12} {:>13} {:>10} {:>12} {:>12} {:>12}",

@@ -12,8 +12,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Serialize;
 use sim::config::vehicle_bridge::VehicleBridgeConfig;
 use sim::vehicle_bridge::track::TrackSpec;
-use sim::vehicle_bridge::traction::TractionSpec;
-use sim::vehicle_bridge::{ContactModel, Scenario, Simulation, run};
+use sim::vehicle_bridge::{ContactModel, Scenario, Simulation, SimulationParts, run};
 
 use crate::errors::{BadInput, bad_input};
 use crate::interrupt::{self, Interrupted};
@@ -113,6 +112,17 @@ pub struct SolverSummary {
     pub steps: usize,
 }
 
+/// The largest bridge response at a response point.
+#[derive(Serialize)]
+pub struct PointJson {
+    /// Position on the bridge \[m\].
+    pub x: f64,
+    /// max |w| \[m\].
+    pub max_deflection: f64,
+    /// max |ẅ| \[m/s²\].
+    pub max_acceleration: f64,
+}
+
 #[derive(Serialize)]
 pub struct Summary {
     /// False when the run stopped early (interrupted, or a step failed): the outputs then hold
@@ -125,6 +135,9 @@ pub struct Summary {
     pub stopped_by: Option<String>,
     pub max_midspan_deflection: f64,
     pub max_midspan_acceleration: f64,
+    /// Per response point of `[output] points` (absent without them).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub points: Vec<PointJson>,
     pub max_quasi_static_deflection: Option<f64>,
     pub dynamic_amplification: Option<f64>,
     pub contact: ContactSummary,
@@ -171,9 +184,7 @@ const MAX_STEPS: f64 = 1e9;
 pub fn simulate(scenario: Scenario, every: usize, snapshots: usize) -> Result<Outcome> {
     simulate_full(
         scenario,
-        Vec::new(),
-        None,
-        None,
+        SimulationParts::default(),
         None,
         every,
         snapshots,
@@ -187,10 +198,8 @@ pub fn simulate(scenario: Scenario, every: usize, snapshots: usize) -> Result<Ou
 #[allow(clippy::too_many_arguments)]
 pub fn simulate_full(
     scenario: Scenario,
-    vehicles: Vec<sim::vehicle_bridge::VehicleLayout>,
+    parts: SimulationParts,
     train: Option<sim::train::Train>,
-    traction: Option<TractionSpec>,
-    track: Option<TrackSpec>,
     every: usize,
     snapshots: usize,
     csv: Option<&Path>,
@@ -210,7 +219,8 @@ pub fn simulate_full(
         let mut groups = Vec::new();
         let mut k = 0;
         while k < scenario.wheels.len() {
-            let n = vehicles
+            let n = parts
+                .vehicles
                 .iter()
                 .find(|v| v.first_wheel == k)
                 .map_or(1, |v| v.vehicle.wheelsets());
@@ -221,15 +231,8 @@ pub fn simulate_full(
     } else {
         Vec::new()
     };
-    let track_model = track.as_ref().map(track_model_name);
-    let built = match track {
-        Some(track) => Simulation::with_track(scenario, vehicles, track),
-        None => Simulation::with_vehicles(scenario, vehicles),
-    };
-    let mut sim = built.map_err(|e| bad_input(e.into()))?;
-    if let Some(spec) = traction {
-        sim.set_traction(spec).map_err(|e| bad_input(e.into()))?;
-    }
+    let track_model = parts.track.as_ref().map(track_model_name);
+    let mut sim = Simulation::with_parts(scenario, parts).map_err(|e| bad_input(e.into()))?;
     let steps = sim.planned_steps();
     let (end, dt) = (sim.end_time(), sim.scenario().dt);
     if steps as f64 > MAX_STEPS {
@@ -323,6 +326,15 @@ pub fn simulate_full(
         stopped_by,
         max_midspan_deflection: run.deflection.max_abs(),
         max_midspan_acceleration: run.acceleration.max_abs(),
+        points: run
+            .points
+            .iter()
+            .map(|p| PointJson {
+                x: p.x,
+                max_deflection: p.deflection.max_abs(),
+                max_acceleration: p.acceleration.max_abs(),
+            })
+            .collect(),
         max_quasi_static_deflection: run.max_quasi_static_deflection,
         dynamic_amplification: run.dynamic_amplification,
         contact: ContactSummary {
@@ -419,6 +431,12 @@ pub fn print_summary(s: &Summary) {
         "  output-point deflection max {:.4e} m, acceleration max {:.4} m/s²",
         s.max_midspan_deflection, s.max_midspan_acceleration
     );
+    for p in &s.points {
+        println!(
+            "  at x = {} m: deflection max {:.4e} m, acceleration max {:.4} m/s²",
+            p.x, p.max_deflection, p.max_acceleration
+        );
+    }
     if let Some(d) = s.dynamic_amplification {
         println!("  dynamic amplification {d:.4}");
     }
@@ -482,17 +500,16 @@ pub fn print_summary(s: &Summary) {
 }
 
 /// `dyncontact run` for `kind = "vehicle_bridge"`.
-pub fn run(config: VehicleBridgeConfig, out: &Path, json: bool) -> Result<()> {
+pub fn run(mut config: VehicleBridgeConfig, out: &Path, json: bool) -> Result<()> {
+    let parts = config.take_parts();
     let VehicleBridgeConfig {
         scenario,
-        vehicles,
         train,
-        traction,
         every,
         every_is_default,
         snapshots,
         warnings,
-        track,
+        ..
     } = config;
     for w in warnings {
         eprintln!("warning: {w}");
@@ -507,10 +524,8 @@ pub fn run(config: VehicleBridgeConfig, out: &Path, json: bool) -> Result<()> {
     let run_out = RunOutput::create(out, OUTPUT_SET)?;
     let outcome = simulate_full(
         scenario,
-        vehicles,
+        parts,
         train,
-        traction,
-        track,
         every,
         snapshots,
         Some(&run_out.path("timeseries.csv")),

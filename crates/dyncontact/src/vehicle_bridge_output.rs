@@ -7,6 +7,7 @@ use std::path::Path;
 use anyhow::Result;
 use sim::vehicle_bridge::traction::TractionSample;
 use sim::vehicle_bridge::{Simulation, WheelSample};
+use sim::vehicle_bridge_series::{SeriesLayout, series_row};
 
 use crate::output::{CsvStream, RunOutput};
 use crate::plot::{self, Panel, Series};
@@ -27,52 +28,26 @@ pub const OUTPUT_SET: &[&str] = &[
 /// the recording stride doubles, so a run of any length plots in bounded time and memory.
 pub const PLOT_ROWS: usize = 20_000;
 
-/// One recorded row of the time series.
+/// One row kept for the plots.
 pub struct Row {
     pub t: f64,
     pub midspan: (f64, f64, f64),
     pub wheels: Vec<WheelSample>,
-    pub iterations: usize,
     pub traction: Vec<TractionSample>,
-    /// The track's sample (with `[track]` only).
-    pub track: Option<sim::vehicle_bridge::track::TrackSample>,
 }
 
 impl Row {
-    fn of(sim: &Simulation, iterations: usize) -> Row {
+    fn of(sim: &Simulation) -> Row {
         Row {
             t: sim.t(),
             midspan: sim.output_point_response(),
             wheels: sim.wheels().to_vec(),
-            iterations,
             traction: sim
                 .traction()
                 .map(|t| t.samples().to_vec())
                 .unwrap_or_default(),
-            track: sim.track_sample().cloned(),
         }
     }
-
-    /// The CSV columns of this row (see [`header`]).
-    fn values(&self, out: &mut Vec<f64>) {
-        sim::vehicle_bridge_series::row(
-            self.t,
-            self.midspan,
-            self.iterations,
-            &self.wheels,
-            &self.traction,
-            out,
-        );
-        if let Some(track) = &self.track {
-            sim::vehicle_bridge_series::track_row(track, out);
-        }
-    }
-}
-
-/// The CSV header for `nw` wheels (with the three traction columns per wheel when
-/// `with_traction`).
-fn header(nw: usize, with_traction: bool) -> Vec<String> {
-    sim::vehicle_bridge_series::columns(nw, with_traction)
 }
 
 /// Records the steps it is given: streams each to the CSV and keeps a thinned copy for the
@@ -93,12 +68,7 @@ impl Recorder {
     pub fn new(sim: &Simulation, csv: Option<&Path>) -> Result<Recorder> {
         let csv = match csv {
             Some(path) => {
-                let mut names = header(sim.wheels().len(), sim.traction().is_some());
-                if sim.track_sample().is_some() {
-                    names.extend(sim::vehicle_bridge_series::track_columns(
-                        sim.wheels().len(),
-                    ));
-                }
+                let names = SeriesLayout::of(sim).columns();
                 let refs: Vec<&str> = names.iter().map(String::as_str).collect();
                 Some(CsvStream::create(path, &refs)?)
             }
@@ -116,14 +86,13 @@ impl Recorder {
 
     /// Record the current state (`iterations`: coupling iterations of the last step).
     pub fn record(&mut self, sim: &Simulation, iterations: usize) -> Result<()> {
-        let row = Row::of(sim, iterations);
         if let Some(csv) = &mut self.csv {
-            row.values(&mut self.line);
+            series_row(sim, iterations, &mut self.line);
             csv.row(&self.line)?;
         }
-        self.last_t = Some(row.t);
+        self.last_t = Some(sim.t());
         if self.recorded.is_multiple_of(self.stride) {
-            self.plot_rows.push(row);
+            self.plot_rows.push(Row::of(sim));
             if self.plot_rows.len() > PLOT_ROWS {
                 let mut k = 0;
                 self.plot_rows.retain(|_| {
@@ -536,21 +505,4 @@ pub fn write_train_pictures(dir: &RunOutput, pictures: &[TrainPicture]) -> Resul
         })
         .collect();
     plot::panels(&dir.path("train.png"), &panels)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn header_has_the_traction_columns_after_each_wheel() {
-        let h = header(2, true);
-        assert_eq!(h.len(), 5 + 2 * 12);
-        assert_eq!(h[0], "t_s");
-        assert_eq!(h[5 + 8], "max_pressure_0_pa");
-        assert_eq!(h[5 + 9], "longitudinal_force_0_n");
-        assert_eq!(h[5 + 10], "creepage_0");
-        assert_eq!(h[5 + 12], "position_1_m");
-        assert_eq!(header(1, false)[5..7], ["position_m", "wheel_z_m"]);
-    }
 }

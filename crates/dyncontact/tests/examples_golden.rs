@@ -1220,6 +1220,10 @@ fn vehicle_bridge_examples_match_the_docs() {
             q("contact/max_force", 419.5e3, 0.1e3),
             n("contact/loss_of_contact_events", 161.0),
             n("solver/failed_steps", 0.0),
+            q("max_midspan_deflection", 1.8319e-3, 1e-7),
+            n("points/0/x", 30.0),
+            q("points/0/max_deflection", 1.8099e-3, 1e-7),
+            q("points/0/max_acceleration", 37.86, 0.01),
         ],
         docs,
     );

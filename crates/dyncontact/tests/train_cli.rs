@@ -36,8 +36,8 @@ fn a_train_run_writes_its_summary_and_the_train_picture() {
 
 #[test]
 fn a_long_train_run_records_a_bounded_time_series_with_exact_extrema() {
-    // Eight Manchester cars (32 wheels) for 1.5 s at Δt = 1e-4 s: 15,001 rows of 293 values
-    // would be 4.4e6 values, above the default bound of 4e6, so without `[output] every` the
+    // Eight Manchester cars (32 wheels) for 1.5 s at Δt = 1e-4 s: 15,001 rows of 309 values
+    // (5 + 9 per wheel + 2 per car body) would be 4.6e6 values, above the default bound of 4e6, so without `[output] every` the
     // series records one step in 2; the summary's extrema are over every step, so they
     // equal those of the run that records every step.
     let scenario = |every: &str| {
@@ -77,7 +77,7 @@ fn a_long_train_run_records_a_bounded_time_series_with_exact_extrema() {
     let (default, rows, width, stdout) = run("default", "");
     let (every_step, all_rows, _, _) = run("every", "[output]\nevery = 1\n");
     assert_eq!(all_rows, 15_001);
-    assert_eq!(width, 293);
+    assert_eq!(width, 5 + 9 * 32 + 2 * 8);
     // Steps 0, 2, …, 15,000.
     assert_eq!(rows, 7_501, "{stdout}");
     assert!((rows * width) as f64 <= sim::config::vehicle_bridge::DEFAULT_SERIES_VALUES);

@@ -77,7 +77,9 @@ pub mod irregularity;
 pub mod linalg;
 pub mod moving_forces;
 mod outputs;
+mod parts;
 mod picard;
+pub mod points;
 pub mod profiles;
 pub mod radau;
 mod resting;
@@ -99,10 +101,11 @@ pub use irregularity::{Irregularity, RandomProfile, TrackSpectrum};
 use linalg::{BlockDiagonal, CapacitanceWork, DenseWork};
 pub use moving_forces::MovingForce;
 pub use outputs::{SolverStats, WheelSample};
+pub use parts::SimulationParts;
 pub use radau::Radau5Spec;
 pub use run::{
-    Accuracy, Extremum, NoObserver, Range, RunFailure, RunObserver, RunSummary, StepInfo,
-    WheelSummary,
+    Accuracy, Extremum, NoObserver, PointSummary, Range, RunFailure, RunObserver, RunSummary,
+    StepInfo, WheelSummary,
 };
 pub use scenario::{
     ContactModel, CouplingSolver, CouplingSpec, Integrator, MAX_STATIC_SAG, Scenario, WheelSpec,
@@ -169,6 +172,8 @@ pub struct Simulation {
     track: Option<Box<track::TrackLayer>>,
     /// Vehicles at rest ahead of the span, held out of the step (module [`resting`]).
     resting: resting::Resting,
+    /// Response points besides the output point (module [`points`]).
+    points: points::ResponsePoints,
 }
 
 #[derive(Debug, Default)]

@@ -8,10 +8,90 @@
 //! `body_acceleration_m_s2`, `contact_force_n`, `approach_m`, `patch_length_m`,
 //! `patch_width_m`, `max_pressure_pa` and, with traction, `longitudinal_force_n`, `creepage`,
 //! `adhesion_fraction` (with several wheels the wheel index k goes before the unit:
-//! `contact_force_1_n`).
+//! `contact_force_1_n`); with `[track]` the track's columns ([`track_columns`]); per response
+//! point i of `[output] points` `deflection_point_i_m`, `velocity_point_i_m_s`,
+//! `acceleration_point_i_m_s2`; per car body b of the multibody vehicles (running order)
+//! `car_body_acceleration_b_m_s2` (vertical, at its centre of gravity) and
+//! `car_body_pitch_acceleration_b_rad_s2`. [`SeriesLayout`] and [`series_row`] give a run's
+//! columns and rows.
 
-use crate::vehicle_bridge::WheelSample;
 use crate::vehicle_bridge::traction::TractionSample;
+use crate::vehicle_bridge::{Simulation, WheelSample};
+
+/// Which column groups a run's time series has (see the module documentation).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct SeriesLayout {
+    /// Wheels.
+    pub wheels: usize,
+    /// With the three traction columns per wheel.
+    pub traction: bool,
+    /// With the track's columns.
+    pub track: bool,
+    /// Response points besides the output point.
+    pub points: usize,
+    /// Car bodies of the multibody vehicles.
+    pub car_bodies: usize,
+}
+
+impl SeriesLayout {
+    /// The layout of `sim`'s series.
+    pub fn of(sim: &Simulation) -> Self {
+        SeriesLayout {
+            wheels: sim.wheels().len(),
+            traction: sim.traction().is_some(),
+            track: sim.track_sample().is_some(),
+            points: sim.output_points().len(),
+            car_bodies: sim.car_body_count(),
+        }
+    }
+
+    /// The column names, in the order of [`series_row`].
+    pub fn columns(&self) -> Vec<String> {
+        let mut names = columns(self.wheels, self.traction);
+        if self.track {
+            names.extend(track_columns(self.wheels));
+        }
+        for i in 0..self.points {
+            names.push(format!("deflection_point_{i}_m"));
+            names.push(format!("velocity_point_{i}_m_s"));
+            names.push(format!("acceleration_point_{i}_m_s2"));
+        }
+        for b in 0..self.car_bodies {
+            names.push(format!("car_body_acceleration_{b}_m_s2"));
+            names.push(format!("car_body_pitch_acceleration_{b}_rad_s2"));
+        }
+        names
+    }
+
+    /// Values per row.
+    pub fn width(&self) -> usize {
+        self.columns().len()
+    }
+}
+
+/// The row of `sim`'s current state into `out` (cleared first), in the order of
+/// [`SeriesLayout::columns`]; `iterations`: the coupling iterations of the last step.
+pub fn series_row(sim: &Simulation, iterations: usize, out: &mut Vec<f64>) {
+    let traction = sim.traction().map(|t| t.samples()).unwrap_or(&[]);
+    row(
+        sim.t(),
+        sim.output_point_response(),
+        iterations,
+        sim.wheels(),
+        traction,
+        out,
+    );
+    if let Some(track) = sim.track_sample() {
+        track_row(track, out);
+    }
+    for i in 0..sim.output_points().len() {
+        let (d, v, a) = sim.point_response(i);
+        out.extend([d, v, a]);
+    }
+    for (a, pitch) in sim.car_body_accelerations() {
+        out.extend([a, pitch]);
+    }
+}
 
 /// (quantity, unit suffix) of each per-wheel column.
 const PER_WHEEL: [(&str, &str); 12] = [
@@ -122,4 +202,50 @@ pub fn track_row(sample: &crate::vehicle_bridge::track::TrackSample, out: &mut V
         sample.ballast_force,
         sample.rail_bridge_relative,
     ]);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_traction_columns_follow_each_wheel() {
+        let h = columns(2, true);
+        assert_eq!(h.len(), 5 + 2 * 12);
+        assert_eq!(h[0], "t_s");
+        assert_eq!(h[5 + 8], "max_pressure_0_pa");
+        assert_eq!(h[5 + 9], "longitudinal_force_0_n");
+        assert_eq!(h[5 + 10], "creepage_0");
+        assert_eq!(h[5 + 12], "position_1_m");
+        assert_eq!(columns(1, false)[5..7], ["position_m", "wheel_z_m"]);
+    }
+
+    #[test]
+    fn points_and_car_bodies_come_after_the_track() {
+        let layout = SeriesLayout {
+            wheels: 2,
+            traction: false,
+            track: true,
+            points: 2,
+            car_bodies: 1,
+        };
+        let h = layout.columns();
+        let base = 5 + 2 * 9 + 2 + 4;
+        assert_eq!(h.len(), base + 2 * 3 + 2);
+        assert_eq!(layout.width(), h.len());
+        assert_eq!(h[base - 1], "rail_bridge_relative_m");
+        assert_eq!(
+            h[base..],
+            [
+                "deflection_point_0_m",
+                "velocity_point_0_m_s",
+                "acceleration_point_0_m_s2",
+                "deflection_point_1_m",
+                "velocity_point_1_m_s",
+                "acceleration_point_1_m_s2",
+                "car_body_acceleration_0_m_s2",
+                "car_body_pitch_acceleration_0_rad_s2",
+            ]
+        );
+    }
 }

@@ -148,8 +148,15 @@ fn the_default_output_point_is_never_a_support() {
 fn the_series_memory_check_counts_the_recorded_columns() {
     // The recorded time series is refused when it would exceed the memory limit, estimated
     // from the columns really written (t, the bridge, per wheel; before 2026-11-27 a rough
-    // 5 + 12 values per wheel, which refused runs that fit). Two Manchester cars: 8 wheels.
-    let width = sim::vehicle_bridge_series::columns(8, false).len() as f64;
+    // 5 + 12 values per wheel, which refused runs that fit). Two Manchester cars: 8 wheels,
+    // 2 car bodies.
+    let layout = sim::vehicle_bridge_series::SeriesLayout {
+        wheels: 8,
+        car_bodies: 2,
+        ..Default::default()
+    };
+    assert_eq!(layout.width(), 5 + 9 * 8 + 2 * 2);
+    let width = layout.width() as f64;
     let limit_rows = sim::config::checks::MAX_MEMORY_BYTES / (8.0 * width);
     for (factor, accepted) in [(0.97, true), (1.03, false)] {
         let duration = factor * limit_rows * 1e-4;

@@ -27,6 +27,7 @@ use crate::vehicle_bridge::{
     ContactModel, CouplingSolver, CouplingSpec, GRAVITY, Integrator, Irregularity, Radau5Spec,
     Scenario, WheelSpec,
 };
+use crate::vehicle_bridge_series::SeriesLayout;
 
 /// Default structural method.
 pub const DEFAULT_METHOD: &str = "newmark";
@@ -79,6 +80,22 @@ pub struct VehicleBridgeConfig {
     /// The track between the wheels and the bridge (`[track]`; `None`: the rail is the beam;
     /// [`crate::vehicle_bridge::Simulation::with_track`]).
     pub track: Option<crate::vehicle_bridge::track::TrackSpec>,
+    /// Response points of the bridge besides the output point (`output.points` \[m\];
+    /// [`crate::vehicle_bridge::Simulation::set_output_points`]).
+    pub points: Vec<f64>,
+}
+
+impl VehicleBridgeConfig {
+    /// Takes the parts of the simulation out of the configuration (vehicles, track,
+    /// traction, response points), leaving the report's (train, output settings).
+    pub fn take_parts(&mut self) -> crate::vehicle_bridge::SimulationParts {
+        crate::vehicle_bridge::SimulationParts {
+            vehicles: std::mem::take(&mut self.vehicles),
+            track: self.track.take(),
+            traction: self.traction.take(),
+            points: std::mem::take(&mut self.points),
+        }
+    }
 }
 
 /// The scenario file.
@@ -230,6 +247,9 @@ pub struct OutputSpec {
     pub every: Option<usize>,
     /// Output point of the bridge response \[m\] (default midspan).
     pub point: Option<f64>,
+    /// More response points of the bridge \[m\] (deflection, velocity and acceleration in
+    /// the time series, their extrema in the summary; default none).
+    pub points: Option<Vec<f64>>,
     /// Number of pressure snapshots along the passage.
     pub snapshots: Option<usize>,
 }
@@ -409,13 +429,16 @@ pub fn build_in(file: VehicleBridgeFile, base: &Path) -> Result<VehicleBridgeCon
     if !dt_given {
         scenario.dt = default_dt(&scenario)?;
     }
-    let every = every_given
-        .unwrap_or_else(|| default_every(&scenario, file.traction.is_some(), file.track.is_some()));
-    check_run_length(
-        &scenario,
-        every,
-        series_width(&scenario, file.traction.is_some(), file.track.is_some()),
-    )?;
+    let points = response_points(out.and_then(|o| o.points.as_deref()), length)?;
+    let layout = SeriesLayout {
+        wheels: scenario.wheels.len(),
+        traction: file.traction.is_some(),
+        track: file.track.is_some(),
+        points: points.len(),
+        car_bodies: vehicles.iter().map(|v| v.vehicle.bodies()).sum(),
+    };
+    let every = every_given.unwrap_or_else(|| default_every(&scenario, &layout));
+    check_run_length(&scenario, every, layout.width())?;
     check_implicit(&scenario)?;
     check_coupling(&scenario)?;
     let traction = traction(file.traction.as_ref())?;
@@ -438,7 +461,28 @@ pub fn build_in(file: VehicleBridgeFile, base: &Path) -> Result<VehicleBridgeCon
         snapshots,
         warnings,
         track,
+        points,
     })
+}
+
+/// `output.points`: at most [`crate::vehicle_bridge::points::MAX_POINTS`], each on the span.
+fn response_points(points: Option<&[f64]>, length: f64) -> Result<Vec<f64>, ConfigError> {
+    let points = points.unwrap_or_default();
+    checks::count(
+        "output.points",
+        points.len(),
+        0,
+        crate::vehicle_bridge::points::MAX_POINTS,
+    )?;
+    for (i, &x) in points.iter().enumerate() {
+        if !(x.is_finite() && (0.0..=length).contains(&x)) {
+            bail!(
+                "`output.points[{i}]` = {}: must lie on the span [0, {length}] m",
+                checks::number(x)
+            );
+        }
+    }
+    Ok(points.to_vec())
 }
 
 pub(crate) fn check_ranges(s: &Scenario) -> Result<(), ConfigError> {
@@ -604,10 +648,9 @@ fn end_time(s: &Scenario) -> f64 {
 pub const DEFAULT_SERIES_VALUES: f64 = 4e6;
 
 /// The default `[output] every`: the smallest stride that keeps the time series (its columns:
-/// [`crate::vehicle_bridge_series::columns`], with the track's) within
-/// [`DEFAULT_SERIES_VALUES`].
-pub fn default_every(s: &Scenario, traction: bool, track: bool) -> usize {
-    let width = series_width(s, traction, track);
+/// `layout`) within [`DEFAULT_SERIES_VALUES`].
+pub fn default_every(s: &Scenario, layout: &SeriesLayout) -> usize {
+    let width = layout.width();
     let rows = (end_time(s) / s.dt).ceil() + 2.0;
     let every = (rows * width as f64 / DEFAULT_SERIES_VALUES).ceil();
     if every.is_finite() && every >= 1.0 {
@@ -615,17 +658,6 @@ pub fn default_every(s: &Scenario, traction: bool, track: bool) -> usize {
     } else {
         1
     }
-}
-
-/// The values per recorded step of the time series: its columns
-/// ([`crate::vehicle_bridge_series::columns`]) and, on a track, the track's.
-fn series_width(s: &Scenario, traction: bool, track: bool) -> usize {
-    let wheels = s.wheels.len();
-    let mut width = crate::vehicle_bridge_series::columns(wheels, traction).len();
-    if track {
-        width += crate::vehicle_bridge_series::track_columns(wheels).len();
-    }
-    width
 }
 
 /// Steps, output rows and the irregularity's setup work of the run, refused when absurd (the

@@ -438,6 +438,7 @@ impl Simulation {
             sine: None,
             track: None,
             resting: Default::default(),
+            points: Default::default(),
         };
         sim.sine = beam::sine_amplitudes(&*sim.scenario.bridge)?;
         sim.hold_resting_vehicles(true);

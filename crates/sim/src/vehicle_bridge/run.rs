@@ -113,6 +113,17 @@ pub struct WheelSummary {
     pub loss_of_contact_events: usize,
 }
 
+/// Extrema of the bridge response at a response point ([`Simulation::set_output_points`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointSummary {
+    /// Position on the bridge \[m\].
+    pub x: f64,
+    /// Deflection \[m\] (down positive).
+    pub deflection: Range,
+    /// Acceleration \[m/s²\].
+    pub acceleration: Range,
+}
+
 /// Smallest largest quasi-static deflection at the output point, relative to that of the
 /// heaviest static load standing there ([`Simulation::quasi_static_reference_deflection`]),
 /// for which [`RunSummary::dynamic_amplification`] is given (0.1 %: below it the loads have
@@ -145,6 +156,8 @@ pub struct RunSummary {
     pub dynamic_amplification: Option<f64>,
     /// Per wheel.
     pub wheels: Vec<WheelSummary>,
+    /// Per response point besides the output point ([`Simulation::output_points`]).
+    pub points: Vec<PointSummary>,
     /// Transitions from contact to loss of contact, over all wheels.
     pub loss_of_contact_events: usize,
     /// Coupling statistics.
@@ -347,6 +360,16 @@ impl Recorder {
                 loss_of_contact_events: 0,
             })
             .collect();
+        let points = (0..sim.output_points().len())
+            .map(|i| {
+                let (d, _, a) = sim.point_response(i);
+                PointSummary {
+                    x: sim.output_points()[i],
+                    deflection: Range::new(d, t),
+                    acceleration: Range::new(a, t),
+                }
+            })
+            .collect();
         Self {
             summary: RunSummary {
                 completed: false,
@@ -359,6 +382,7 @@ impl Recorder {
                 max_quasi_static_deflection: None,
                 dynamic_amplification: None,
                 wheels,
+                points,
                 loss_of_contact_events: sim.loss_of_contact_events(),
                 solver: sim.stats(),
                 accuracy: Accuracy::of(sim),
@@ -388,6 +412,11 @@ impl Recorder {
         let (d, _, a) = sim.output_point_response();
         s.deflection.update(d, t);
         s.acceleration.update(a, t);
+        for (i, p) in s.points.iter_mut().enumerate() {
+            let (d, _, a) = sim.point_response(i);
+            p.deflection.update(d, t);
+            p.acceleration.update(a, t);
+        }
         for (w, sample) in s.wheels.iter_mut().zip(sim.wheels()) {
             w.force.update(sample.contact.force, t);
             w.max_pressure = w.max_pressure.max(sample.contact.max_pressure.abs());

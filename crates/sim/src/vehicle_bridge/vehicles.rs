@@ -123,4 +123,20 @@ impl super::Simulation {
             bogie_acceleration: extreme((0..bogies).map(|i| a[d[2 * nb + 2 * i]])),
         })
     }
+
+    /// Number of car bodies of the multibody vehicles (a bogie vehicle has one, an
+    /// articulated vehicle several).
+    pub fn car_body_count(&self) -> usize {
+        self.vehicles.iter().map(|v| v.bodies).sum()
+    }
+
+    /// Vertical acceleration of its centre of gravity \[m/s²\] (positive downwards) and pitch
+    /// acceleration \[rad/s²\] of every car body at the current state, in running order
+    /// (vehicle by vehicle, each vehicle's bodies front to rear).
+    pub fn car_body_accelerations(&self) -> impl Iterator<Item = (f64, f64)> + '_ {
+        let a = self.acceleration();
+        self.vehicles.iter().flat_map(move |veh| {
+            (0..veh.bodies).map(move |j| (a[veh.dofs[2 * j]], a[veh.dofs[2 * j + 1]]))
+        })
+    }
 }

@@ -51,10 +51,10 @@ pub fn example(name: &str) -> String {
 /// has one (panics on an error).
 pub fn simulation(text: &str) -> Simulation {
     match load(text).unwrap_or_else(|e| panic!("{e}")) {
-        ScenarioConfig::VehicleBridge(v) => match v.track {
-            Some(t) => Simulation::with_track(v.scenario, v.vehicles, t).unwrap(),
-            None => Simulation::with_vehicles(v.scenario, v.vehicles).unwrap(),
-        },
+        ScenarioConfig::VehicleBridge(mut v) => {
+            let parts = v.take_parts();
+            Simulation::with_parts(v.scenario, parts).unwrap()
+        }
         _ => panic!("not vehicle_bridge"),
     }
 }
