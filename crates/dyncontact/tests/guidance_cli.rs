@@ -77,6 +77,29 @@ fn a_misspelt_key_gets_the_nearest_valid_key() {
     assert!(e.contains("(did you mean `load`?)"), "{e}");
 }
 
+#[test]
+fn a_load_whose_hertz_patch_exceeds_the_sphere_is_refused_with_its_keys() {
+    // 1000 N on a 1 cm steel-like sphere with E = 2.5 Pa: a = (3 F R / (4 E*))^{1/3} =
+    // 1.76 m, beyond the sphere (its gap R − √(R² − r²) ends at r = R). Before: "no contact:
+    // the prescribed load gives no element in contact".
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(example("hertz_sphere.toml"))
+        .unwrap()
+        .replace("E = 210e9", "E = 2.5");
+    let f = write(dir.path(), "c.toml", &text);
+    let (c, e) = stderr_of(&[
+        "contact",
+        &f,
+        "--out",
+        dir.path().join("o").to_str().unwrap(),
+    ]);
+    assert_eq!(c, Some(2), "{e}");
+    assert!(
+        e.contains("a = 1.7609e0 m") && e.contains("`[gap] radius` = 0.01 m"),
+        "{e}"
+    );
+}
+
 /// `init KIND` writes a template that `run` accepts (the kind's example with a header);
 /// an unknown kind lists the known ones; an existing file is not overwritten.
 #[test]

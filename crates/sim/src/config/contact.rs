@@ -492,6 +492,7 @@ fn prepare(case: ContactCase, base: &Path) -> Result<PreparedCase, ConfigError> 
         None => None,
     };
     let shape = shape(&case.gap, explicit.as_ref(), base)?;
+    check_patch_within_sphere(&shape, &material, load)?;
     let grid = match explicit {
         Some(g) => g,
         None => {
@@ -550,4 +551,23 @@ fn check_gap_ranges(spec: &GapSpec) -> Result<(), ConfigError> {
     ranges::RADIUS.check_opt("gap.length", spec.length)?;
     checks::Range::closed(0.0, 1e6, "m").check_opt("gap.edge_radius", spec.edge_radius)?;
     Ok(())
+}
+
+/// A sphere's exact gap `R − √(R² − r²)` ends at r = R: a load whose Hertz contact radius
+/// reaches R cannot be carried by the sphere (and half-space contact needs a ≪ R long before).
+fn check_patch_within_sphere(
+    shape: &GapShape,
+    material: &Material,
+    load: NormalLoad,
+) -> Result<(), ConfigError> {
+    let GapShape::Sphere { radius } = *shape else {
+        return Ok(());
+    };
+    match shape.hertz(material, load) {
+        Some(h) if h.a >= radius => bail!(
+            "[load]: the Hertz contact radius at this load, a = {:.4e} m, reaches the sphere's `[gap] radius` = {radius} m (half-space contact needs a ≪ R): lower the load, or check the bodies' E",
+            h.a
+        ),
+        _ => Ok(()),
+    }
 }
