@@ -170,6 +170,8 @@ pub struct Outcome {
     /// The output point's position and the bridge's length \[m\] (for the plots).
     output_point: f64,
     bridge_length: f64,
+    /// The response points \[m\] (for the plots).
+    points: Vec<f64>,
     /// The train on the bridge at a few instants (trains only).
     train_pictures: Vec<vehicle_bridge_output::TrainPicture>,
     /// The error of the step that failed, when one did (the outputs up to it are written).
@@ -409,6 +411,7 @@ pub fn simulate_full(
         snapshots: snaps,
         output_point: sim.scenario().output_point,
         bridge_length: length,
+        points: sim.output_points().to_vec(),
         train_pictures: pictures,
         failure,
     })
@@ -538,6 +541,7 @@ pub fn run(mut config: VehicleBridgeConfig, out: &Path, json: bool) -> Result<()
         &vehicle_bridge_output::PlotContext {
             output_point: outcome.output_point,
             bridge_length: outcome.bridge_length,
+            points: &outcome.points,
             static_loads: &outcome.summary.vehicle.static_wheel_loads,
             contact_model: &outcome.summary.contact.model,
         },

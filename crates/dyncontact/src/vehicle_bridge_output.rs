@@ -32,6 +32,8 @@ pub const PLOT_ROWS: usize = 20_000;
 pub struct Row {
     pub t: f64,
     pub midspan: (f64, f64, f64),
+    /// (deflection, acceleration) at each response point of `[output] points`.
+    pub points: Vec<(f64, f64)>,
     pub wheels: Vec<WheelSample>,
     pub traction: Vec<TractionSample>,
 }
@@ -41,6 +43,12 @@ impl Row {
         Row {
             t: sim.t(),
             midspan: sim.output_point_response(),
+            points: (0..sim.output_points().len())
+                .map(|i| {
+                    let (d, _, a) = sim.point_response(i);
+                    (d, a)
+                })
+                .collect(),
             wheels: sim.wheels().to_vec(),
             traction: sim
                 .traction()
@@ -120,6 +128,8 @@ pub struct PlotContext<'a> {
     /// Position of the output point along the bridge \[m\] and the bridge's length \[m\].
     pub output_point: f64,
     pub bridge_length: f64,
+    /// The response points of `[output] points` \[m\].
+    pub points: &'a [f64],
     /// Static wheel loads \[N\] (the contact force at rest).
     pub static_loads: &'a [f64],
     /// The contact model's name (`bem` snapshots are piecewise constant per element).
@@ -205,26 +215,45 @@ pub fn write_plots(
         }],
     )?;
     let point = output_point_words(ctx);
+    // The output point, then each response point (one curve each).
+    let bridge_series = |name: &str, out: &dyn Fn(&Row) -> f64, at: &dyn Fn(&Row, usize) -> f64| {
+        let mut series = vec![Series::new(
+            if ctx.points.is_empty() {
+                name.to_string()
+            } else {
+                format!("output point, x = {} m", fmt_num(ctx.output_point))
+            },
+            rows.iter().map(|r| (lead(r), out(r))).collect(),
+        )];
+        series.extend(ctx.points.iter().enumerate().map(|(i, &x)| {
+            Series::new(
+                format!("x = {} m", fmt_num(x)),
+                rows.iter().map(|r| (lead(r), at(r, i))).collect(),
+            )
+        }));
+        series
+    };
+    let and_points = if ctx.points.is_empty() {
+        ""
+    } else {
+        " and the response points"
+    };
     plot::panels(
         &dir.path("midspan.png"),
         &[
             Panel {
-                title: format!("Bridge deflection at the output point ({point})"),
+                title: format!("Bridge deflection at the output point ({point}){and_points}"),
                 x_label: x_lead.into(),
                 y_label: "deflection, down positive [mm]".into(),
-                series: vec![Series::new(
-                    "deflection",
-                    rows.iter().map(|r| (lead(r), 1e3 * r.midspan.0)).collect(),
-                )],
+                series: bridge_series("deflection", &|r| 1e3 * r.midspan.0, &|r, i| {
+                    1e3 * r.points[i].0
+                }),
             },
             Panel {
-                title: format!("Bridge acceleration at the output point ({point})"),
+                title: format!("Bridge acceleration at the output point ({point}){and_points}"),
                 x_label: x_lead.into(),
                 y_label: "acceleration [m/s²]".into(),
-                series: vec![Series::new(
-                    "acceleration",
-                    rows.iter().map(|r| (lead(r), r.midspan.2)).collect(),
-                )],
+                series: bridge_series("acceleration", &|r| r.midspan.2, &|r, i| r.points[i].1),
             },
         ],
     )?;
