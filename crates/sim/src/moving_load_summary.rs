@@ -32,9 +32,26 @@ pub struct MovingLoadSummary {
     pub max_midspan_acceleration: f64,
     pub max_midspan_moment: f64,
     pub max_free_vibration_deflection: f64,
+    /// The other response points (`[output] points`; without them a continuous bridge's other
+    /// spans' midspans), with their extrema (absent without such points).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub points: Vec<PointMax>,
     pub exit_time: f64,
     pub simulated_time_s: f64,
     pub wall_time_s: f64,
+}
+
+/// The largest response at a response point.
+#[derive(Debug, Clone, Serialize)]
+pub struct PointMax {
+    /// Position on the bridge \[m\].
+    pub x: f64,
+    /// max |w| \[m\].
+    pub max_deflection: f64,
+    /// max |ẅ| \[m/s²\].
+    pub max_acceleration: f64,
+    /// max |M| \[N m\].
+    pub max_moment: f64,
 }
 
 /// The summary of response `r` of `loads` over `bridge` (`integrator` and `dt` as run, `wall`
@@ -76,6 +93,16 @@ pub fn summarise(
         max_midspan_acceleration: r.max_abs_acceleration(0)?,
         max_midspan_moment: r.max_abs_bending_moment(0)?,
         max_free_vibration_deflection: r.max_abs_deflection_between(0, r.exit_time, end)?,
+        points: (1..r.n_points())
+            .map(|p| {
+                Ok(PointMax {
+                    x: r.points[p],
+                    max_deflection: r.max_abs_deflection(p)?,
+                    max_acceleration: r.max_abs_acceleration(p)?,
+                    max_moment: r.max_abs_bending_moment(p)?,
+                })
+            })
+            .collect::<Result<_, BeamError>>()?,
         exit_time: r.exit_time,
         simulated_time_s: end,
         wall_time_s: wall,

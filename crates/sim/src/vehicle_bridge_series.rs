@@ -9,8 +9,8 @@
 //! `patch_width_m`, `max_pressure_pa` and, with traction, `longitudinal_force_n`, `creepage`,
 //! `adhesion_fraction` (with several wheels the wheel index k goes before the unit:
 //! `contact_force_1_n`); with `[track]` the track's columns ([`track_columns`]); per response
-//! point i of `[output] points` `deflection_point_i_m`, `velocity_point_i_m_s`,
-//! `acceleration_point_i_m_s2`; per car body b of the multibody vehicles (running order)
+//! point x of `[output] points` `deflection_x<x>_m`, `velocity_x<x>_m_s`,
+//! `acceleration_x<x>_m_s2` (as `moving_load` names its points, e.g. `deflection_x30_m`); per car body b of the multibody vehicles (running order)
 //! `car_body_acceleration_b_m_s2` (vertical, at its centre of gravity) and
 //! `car_body_pitch_acceleration_b_rad_s2`. [`SeriesLayout`] and [`series_row`] give a run's
 //! columns and rows.
@@ -19,7 +19,7 @@ use crate::vehicle_bridge::traction::TractionSample;
 use crate::vehicle_bridge::{Simulation, WheelSample};
 
 /// Which column groups a run's time series has (see the module documentation).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct SeriesLayout {
     /// Wheels.
     pub wheels: usize,
@@ -27,8 +27,8 @@ pub struct SeriesLayout {
     pub traction: bool,
     /// With the track's columns.
     pub track: bool,
-    /// Response points besides the output point.
-    pub points: usize,
+    /// Response points besides the output point \[m\].
+    pub points: Vec<f64>,
     /// Car bodies of the multibody vehicles.
     pub car_bodies: usize,
 }
@@ -40,7 +40,7 @@ impl SeriesLayout {
             wheels: sim.wheels().len(),
             traction: sim.traction().is_some(),
             track: sim.track_sample().is_some(),
-            points: sim.output_points().len(),
+            points: sim.output_points().to_vec(),
             car_bodies: sim.car_body_count(),
         }
     }
@@ -51,10 +51,10 @@ impl SeriesLayout {
         if self.track {
             names.extend(track_columns(self.wheels));
         }
-        for i in 0..self.points {
-            names.push(format!("deflection_point_{i}_m"));
-            names.push(format!("velocity_point_{i}_m_s"));
-            names.push(format!("acceleration_point_{i}_m_s2"));
+        for x in &self.points {
+            names.push(format!("deflection_x{x}_m"));
+            names.push(format!("velocity_x{x}_m_s"));
+            names.push(format!("acceleration_x{x}_m_s2"));
         }
         for b in 0..self.car_bodies {
             names.push(format!("car_body_acceleration_{b}_m_s2"));
@@ -226,7 +226,7 @@ mod tests {
             wheels: 2,
             traction: false,
             track: true,
-            points: 2,
+            points: vec![10.0, 27.5],
             car_bodies: 1,
         };
         let h = layout.columns();
@@ -237,12 +237,12 @@ mod tests {
         assert_eq!(
             h[base..],
             [
-                "deflection_point_0_m",
-                "velocity_point_0_m_s",
-                "acceleration_point_0_m_s2",
-                "deflection_point_1_m",
-                "velocity_point_1_m_s",
-                "acceleration_point_1_m_s2",
+                "deflection_x10_m",
+                "velocity_x10_m_s",
+                "acceleration_x10_m_s2",
+                "deflection_x27.5_m",
+                "velocity_x27.5_m_s",
+                "acceleration_x27.5_m_s2",
                 "car_body_acceleration_0_m_s2",
                 "car_body_pitch_acceleration_0_rad_s2",
             ]

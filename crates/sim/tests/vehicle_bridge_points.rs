@@ -41,16 +41,13 @@ fn response_points_follow_the_static_influence_lines_of_a_crawling_train() {
     assert_eq!(sim.output_points(), xs);
     let offsets = [0.0, 2.56, 19.0, 21.56, 25.0, 27.56, 44.0, 46.56];
     let layout = SeriesLayout::of(&sim);
-    assert_eq!((layout.points, layout.car_bodies), (3, 2));
+    assert_eq!((layout.points.len(), layout.car_bodies), (3, 2));
     let names = layout.columns();
     let column = |name: &str| names.iter().position(|n| n == name).unwrap();
-    let (mid, p1) = (
-        column("deflection_midspan_m"),
-        column("deflection_point_1_m"),
-    );
+    let (mid, p1) = (column("deflection_midspan_m"), column("deflection_x12.5_m"));
     let (acc_mid, acc1) = (
         column("acceleration_midspan_m_s2"),
-        column("acceleration_point_1_m_s2"),
+        column("acceleration_x12.5_m_s2"),
     );
     let mut row = Vec::new();
     let mut peak_dynamic = [0.0f64; 3];
@@ -95,7 +92,7 @@ fn the_car_body_columns_are_the_bodies_accelerations() {
     // columns report (the body's centre of gravity) and `vehicle_response` gives its pitch.
     let mut sim = simulation(&crawling_train("[]").replace("speed = 2.0", "speed = 40.0"));
     let layout = SeriesLayout::of(&sim);
-    assert_eq!((layout.points, layout.car_bodies), (0, 2));
+    assert_eq!((layout.points.len(), layout.car_bodies), (0, 2));
     let names = layout.columns();
     let column = |name: &str| names.iter().position(|n| n == name).unwrap();
     let mut row = Vec::new();
@@ -126,4 +123,41 @@ fn response_points_off_the_span_are_refused() {
     };
     assert!(e.contains("`output.points[1]` = 30"), "{e}");
     assert!(e.contains("[0, 25] m"), "{e}");
+}
+
+#[test]
+fn a_continuous_bridge_reports_every_span_by_default() {
+    // The two-span example (2 × 20 m) without `points`: the output point is the first span's
+    // midspan (`point = 10.0`), the second span's midspan is added; `points = []` adds none;
+    // a single span adds none.
+    let two_span = support::example("vehicle_bridge_two_span_flat.toml");
+    let points = |text: &str| match support::load(text).unwrap() {
+        sim::config::ScenarioConfig::VehicleBridge(v) => (v.scenario.output_point, v.points),
+        _ => panic!("not vehicle_bridge"),
+    };
+    let without = two_span.replace("points = [30.0]", "");
+    assert_ne!(without, two_span);
+    assert_eq!(points(&without), (10.0, vec![30.0]));
+    let no_point = without.replace("point = 10.0", "");
+    assert_eq!(points(&no_point), (10.0, vec![30.0]));
+    assert_eq!(
+        points(&two_span.replace("points = [30.0]", "points = []")),
+        (10.0, vec![])
+    );
+    assert_eq!(points(&crawling_train("[]")).1, Vec::<f64>::new());
+    assert_eq!(
+        points(&crawling_train("[]").replace("[output]\npoints = []\n", "")),
+        (12.5, vec![])
+    );
+    // moving_load: the first point L/2 = 20 m lies in the second span of the 15 m + 25 m
+    // example; without `points` the midspans 7.5 m and 27.5 m follow it.
+    let ml = support::example("moving_load_two_span_train.toml");
+    let ml_points = |text: &str| match support::load(text).unwrap() {
+        sim::config::ScenarioConfig::MovingLoad(m) => m.points.clone(),
+        _ => panic!("not moving_load"),
+    };
+    let without = ml.replace("points = [7.5, 27.5]", "");
+    assert_ne!(without, ml);
+    assert_eq!(ml_points(&without), vec![20.0, 7.5, 27.5]);
+    assert_eq!(ml_points(&ml), vec![20.0, 7.5, 27.5]);
 }

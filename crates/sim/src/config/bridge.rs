@@ -442,6 +442,20 @@ impl Bridge {
         }
     }
 
+    /// The midspans of a continuous bridge's spans other than the one at `x` (empty for a
+    /// single span): the default extra response points of `vehicle_bridge` and `moving_load`,
+    /// so that every span is reported.
+    pub fn other_span_midpoints(&self, x: f64) -> Vec<f64> {
+        let length = self.basis.length();
+        let mids = self.span_midpoints();
+        if mids.len() < 2 {
+            return Vec::new();
+        }
+        mids.into_iter()
+            .filter(|m| (m - x).abs() > 1e-9 * length)
+            .collect()
+    }
+
     /// The default output point of a single-point run (`vehicle_bridge`): the bridge's middle
     /// L/2, unless that is a support of a continuous FE bridge (where the deck does not move):
     /// then the midspan of its longest span (the first of equal ones), with a note saying so.

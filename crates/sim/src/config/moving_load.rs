@@ -200,8 +200,12 @@ pub fn build(file: MovingLoadFile) -> Result<MovingLoadConfig, ConfigError> {
         Some(f) => checks::Range::closed(0.0, 1e6, "s").check("output.free_vibration", f)?,
         None => (3.0 * 2.0 * std::f64::consts::PI / omega1).min(DEFAULT_FREE_VIBRATION_MAX),
     };
-    // "Midspan": L/2, or the longest span's midspan where L/2 is a support.
+    // "Midspan": L/2, or the longest span's midspan where L/2 is a support; without
+    // `points`, a continuous bridge reports the midspan of every other span too.
     let mut points = vec![bridge.default_output_point().0];
+    if output.and_then(|o| o.points.as_ref()).is_none() {
+        points.extend(bridge.other_span_midpoints(points[0]));
+    }
     if let Some(extra) = output.and_then(|o| o.points.clone()) {
         if let Some(x) = extra
             .iter()

@@ -397,15 +397,17 @@ pub fn build_in(file: VehicleBridgeFile, base: &Path) -> Result<VehicleBridgeCon
         0,
         MAX_SNAPSHOTS,
     )?;
+    let output_point = match out.and_then(|o| o.point) {
+        Some(x) => x,
+        None => {
+            let (x, note) = bridge_output_point;
+            warnings.extend(note);
+            x
+        }
+    };
+    let default_points = bridge.other_span_midpoints(output_point);
     let scenario = Scenario {
-        output_point: match out.and_then(|o| o.point) {
-            Some(x) => x,
-            None => {
-                let (x, note) = bridge_output_point;
-                warnings.extend(note);
-                x
-            }
-        },
+        output_point,
         bridge: bridge.basis,
         damping: bridge.damping,
         wheels,
@@ -429,12 +431,16 @@ pub fn build_in(file: VehicleBridgeFile, base: &Path) -> Result<VehicleBridgeCon
     if !dt_given {
         scenario.dt = default_dt(&scenario)?;
     }
-    let points = response_points(out.and_then(|o| o.points.as_deref()), length)?;
+    // Without `points`, a continuous bridge reports the midspan of every other span too.
+    let points = match out.and_then(|o| o.points.as_deref()) {
+        Some(p) => response_points(p, length)?,
+        None => default_points,
+    };
     let layout = SeriesLayout {
         wheels: scenario.wheels.len(),
         traction: file.traction.is_some(),
         track: file.track.is_some(),
-        points: points.len(),
+        points: points.clone(),
         car_bodies: vehicles.iter().map(|v| v.vehicle.bodies()).sum(),
     };
     let every = every_given.unwrap_or_else(|| default_every(&scenario, &layout));
@@ -466,8 +472,7 @@ pub fn build_in(file: VehicleBridgeFile, base: &Path) -> Result<VehicleBridgeCon
 }
 
 /// `output.points`: at most [`crate::vehicle_bridge::points::MAX_POINTS`], each on the span.
-fn response_points(points: Option<&[f64]>, length: f64) -> Result<Vec<f64>, ConfigError> {
-    let points = points.unwrap_or_default();
+fn response_points(points: &[f64], length: f64) -> Result<Vec<f64>, ConfigError> {
     checks::count(
         "output.points",
         points.len(),
