@@ -8,7 +8,6 @@
 
 mod support;
 
-use sim::vehicle_bridge::{Scenario, Simulation};
 use support::sweep_config;
 
 /// Every step's (state, velocity, acceleration, wheel forces and approaches) as bits.
@@ -21,28 +20,7 @@ fn passage(speed: f64, bound: bool) -> (Trace, usize, u64, u64) {
     let sim::sweep::SweepModel::Interaction(model) = &c.spec.model else {
         panic!("interaction");
     };
-    let vehicles = &model.trains[0];
-    let rear = vehicles
-        .wheels
-        .iter()
-        .fold(0.0f64, |m, w| m.min(w.position));
-    let scenario = Scenario {
-        bridge: Box::new(std::sync::Arc::clone(&model.basis)),
-        damping: model.damping.clone(),
-        wheels: vehicles.wheels.clone(),
-        moving_forces: vehicles.forces.clone(),
-        speed,
-        contact: model.contact.clone(),
-        geometry: model.geometry,
-        irregularity: sim::vehicle_bridge::Irregularity::None,
-        integrator: model.integrator,
-        dt: vehicles.dt,
-        duration: Some((20.0 - rear) / speed),
-        coupling: model.coupling,
-        gravity: model.gravity,
-        output_point: 10.0,
-    };
-    let mut sim = Simulation::with_vehicles(scenario, vehicles.layouts.clone()).unwrap();
+    let mut sim = sim::sweep::interaction::passage_simulation(model, 0, speed).unwrap();
     sim.bound_force_floor(bound);
     let mut trace = Vec::new();
     let summary = sim
