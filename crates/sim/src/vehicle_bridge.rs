@@ -224,6 +224,10 @@ struct Work {
     /// Per wheel: its floor in the last step it took part in; the largest is `force_floor`.
     wheel_floor: Vec<f64>,
     force_floor: f64,
+    /// The floor bounded where that decides the same (`Simulation::bound_force_floor`), and
+    /// the steps whose floor was so bounded.
+    floor_bound: bool,
+    floor_bounded: u64,
 }
 
 impl Work {

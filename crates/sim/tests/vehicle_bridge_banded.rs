@@ -328,3 +328,40 @@ fn absolute_solve_at_the_wheels_equals_the_full_one_there() {
     // The other entries are the full product's only by chance: some must differ here.
     assert!(indices[..own].iter().any(|&i| full[i] != at[i]));
 }
+
+/// The force floor's bound of `|A⁻¹| e` at the wheels (`solve_abs_bound_at`: the diagonal term
+/// plus the off-diagonal row sum times the largest entry) is never below the exact product
+/// there (to the round-off of both sums), for random and for one-hot e on the rake of HSLM-A1
+/// over 3 modes (a one-hot e off a wheel's row is bounded by that row's off-diagonal sum
+/// alone), and equals it on the modes.
+#[test]
+fn absolute_bound_at_the_wheels_is_above_the_exact_product() {
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    let (a, indices, own) = rake_system(1, 3);
+    let n = a.dimension();
+    let wheels = &indices[own..];
+    let mut cases: Vec<Vec<f64>> = (0..4)
+        .map(|_| (0..n).map(|_| rng.random::<f64>()).collect())
+        .collect();
+    for &i in indices.iter().step_by(7) {
+        let mut e = vec![0.0; n];
+        e[i] = 1.0;
+        cases.push(e);
+    }
+    for e in &cases {
+        let (mut exact, mut bound) = (e.clone(), e.clone());
+        a.solve_abs_at(&mut exact, wheels);
+        a.solve_abs_bound_at(&mut bound, wheels);
+        for &i in wheels {
+            assert!(
+                bound[i] >= exact[i] * (1.0 - 1e-13),
+                "index {i}: {} < {}",
+                bound[i],
+                exact[i]
+            );
+        }
+        for j in 0..3 {
+            assert_eq!(bound[j].to_bits(), exact[j].to_bits(), "mode {j}");
+        }
+    }
+}

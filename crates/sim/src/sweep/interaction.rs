@@ -149,23 +149,7 @@ fn passage_with(
     let dt = vehicles.dt;
     // The steps of the passage and its free vibration (as `Simulation::planned_steps`).
     let total_steps = ((exit + free_vibration) / dt - 1e-9).ceil().max(0.0) as usize;
-    let scenario = Scenario {
-        bridge: Box::new(Arc::clone(&model.basis)),
-        damping: model.damping.clone(),
-        wheels: vehicles.wheels.clone(),
-        moving_forces: vehicles.forces.clone(),
-        speed,
-        contact: model.contact.clone(),
-        geometry: model.geometry,
-        irregularity: Irregularity::None,
-        integrator: model.integrator,
-        dt,
-        duration: Some(exit),
-        coupling: model.coupling,
-        gravity: model.gravity,
-        output_point: 0.5 * length,
-    };
-    let mut sim = Simulation::with_vehicles(scenario, vehicles.layouts.clone())?;
+    let mut sim = passage_simulation(model, train, speed)?;
     let mut peaks = PassagePeaks {
         deflection: vec![0.0; points],
         acceleration: vec![0.0; points],
@@ -222,6 +206,37 @@ fn passage_with(
     }
     peaks.steps = coupled.max(total_steps);
     Ok((peaks, vehicle_peaks))
+}
+
+/// The coupled run of train `train` crossing at `speed` \[m/s\]: its leading axle at the span's
+/// entry, until its last axle has left the span, the force floor bounded
+/// (`Simulation::bound_force_floor`: a sweep reports no floor).
+pub fn passage_simulation(
+    model: &InteractionModel,
+    train: usize,
+    speed: f64,
+) -> Result<Simulation, VehicleBridgeError> {
+    let vehicles = &model.trains[train];
+    let length = model.basis.length();
+    let scenario = Scenario {
+        bridge: Box::new(Arc::clone(&model.basis)),
+        damping: model.damping.clone(),
+        wheels: vehicles.wheels.clone(),
+        moving_forces: vehicles.forces.clone(),
+        speed,
+        contact: model.contact.clone(),
+        geometry: model.geometry,
+        irregularity: Irregularity::None,
+        integrator: model.integrator,
+        dt: vehicles.dt,
+        duration: Some((length - rearmost(vehicles)) / speed),
+        coupling: model.coupling,
+        gravity: model.gravity,
+        output_point: 0.5 * length,
+    };
+    let mut sim = Simulation::with_vehicles(scenario, vehicles.layouts.clone())?;
+    sim.bound_force_floor(true);
+    Ok(sim)
 }
 
 /// The rearmost axle's position (wheels and moving forces) \[m\] (≤ 0).

@@ -13,11 +13,11 @@
 
 pub mod eurocode;
 pub mod interaction;
+pub mod schedule;
 pub mod shard;
 pub mod summary;
 
 use beam::{Axle as BeamAxle, ModalBasis, ModalDamping, PassagePeaks, PassagePlan};
-use rayon::prelude::*;
 
 use crate::train::{Train, TrainError};
 
@@ -159,49 +159,73 @@ pub fn run(
             &mut point_shapes[p * m..(p + 1) * m],
         )?;
     }
-    let results: Vec<Option<Result<Passage, SweepError>>> = jobs
-        .par_iter()
-        .map_init(
-            || plan.work(),
-            |work, &(train, speed)| {
-                if !tick() {
-                    return None;
-                }
-                let v = spec.speeds[speed];
-                let moving = plan
-                    .peaks(basis, &axles[train], v, spec.free_vibration, work)
-                    .map_err(SweepError::from);
-                let peaks = match (&spec.model, moving) {
-                    (SweepModel::MovingForces, moving) => moving.map(|peaks| (peaks, None)),
-                    (SweepModel::Interaction(model), Ok(moving)) => {
-                        interaction::passage(model, train, v, &point_shapes, spec.free_vibration)
-                            .map(|(peaks, vehicles)| {
-                                let peaks = beam::PassagePeaks {
-                                    static_deflection: moving.static_deflection,
-                                    ..peaks
-                                };
-                                (peaks, Some(vehicles))
-                            })
-                            .map_err(|e| SweepError::Interaction {
-                                train: spec.trains[train].name.clone(),
-                                speed: v,
-                                source: Box::new(e),
-                            })
-                    }
-                    (_, Err(e)) => Err(e),
-                };
-                Some(peaks.map(|(peaks, vehicles)| Passage {
-                    train,
-                    speed,
-                    peaks,
-                    vehicles,
-                }))
-            },
-        )
+    // The costliest passages first (module `schedule`): coupled steps times axles.
+    let cost: Vec<f64> = jobs
+        .iter()
+        .map(|&(train, speed)| passage_cost(basis.length(), &axles[train], spec, train, speed))
         .collect();
+    let order = schedule::longest_first(&cost);
+    let results: Vec<Option<Result<Passage, SweepError>>> = schedule::run_in_order(
+        &order,
+        || plan.work(),
+        |work, job| {
+            let (train, speed) = jobs[job];
+            if !tick() {
+                return None;
+            }
+            let v = spec.speeds[speed];
+            let moving = plan
+                .peaks(basis, &axles[train], v, spec.free_vibration, work)
+                .map_err(SweepError::from);
+            let peaks = match (&spec.model, moving) {
+                (SweepModel::MovingForces, moving) => moving.map(|peaks| (peaks, None)),
+                (SweepModel::Interaction(model), Ok(moving)) => {
+                    interaction::passage(model, train, v, &point_shapes, spec.free_vibration)
+                        .map(|(peaks, vehicles)| {
+                            let peaks = beam::PassagePeaks {
+                                static_deflection: moving.static_deflection,
+                                ..peaks
+                            };
+                            (peaks, Some(vehicles))
+                        })
+                        .map_err(|e| SweepError::Interaction {
+                            train: spec.trains[train].name.clone(),
+                            speed: v,
+                            source: Box::new(e),
+                        })
+                }
+                (_, Err(e)) => Err(e),
+            };
+            Some(peaks.map(|(peaks, vehicles)| Passage {
+                train,
+                speed,
+                peaks,
+                vehicles,
+            }))
+        },
+    );
     let done = results.iter().filter(|r| r.is_some()).count();
     if done < total {
         return Err(SweepError::Interrupted { done, total });
     }
     results.into_iter().flatten().collect()
+}
+
+/// The estimated cost of a passage (module `schedule`): its steps up to the last axle's exit,
+/// (L + train length)/v/Δt, times its axles (the coupled model's wheels or the moving forces).
+fn passage_cost(
+    length: f64,
+    axles: &[BeamAxle],
+    spec: &SweepSpec,
+    train: usize,
+    speed: usize,
+) -> f64 {
+    let (first, last) = axles.iter().fold((0.0f64, 0.0f64), |(lo, hi), a| {
+        (lo.min(a.offset), hi.max(a.offset))
+    });
+    let dt = match &spec.model {
+        SweepModel::Interaction(model) => model.trains[train].dt,
+        SweepModel::MovingForces => spec.dt,
+    };
+    (length + (last - first)) / spec.speeds[speed] / dt * axles.len() as f64
 }

@@ -398,6 +398,8 @@ impl Simulation {
             floor_ainv_g: vec![0.0; n],
             wheel_floor: vec![0.0; nw],
             force_floor: 0.0,
+            floor_bound: false,
+            floor_bounded: 0,
         };
         let mut output_shapes = vec![0.0; m];
         scenario

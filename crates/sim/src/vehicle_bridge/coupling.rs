@@ -106,6 +106,19 @@ impl Simulation {
         }
     }
 
+    /// Bounds the contact forces' floating-point floor where the bound decides the same as
+    /// the floor (`true`; the force floor of the coupled step: the states, forces and iteration counts are
+    /// the same bit for bit, the reported `max_force_floor` is then an upper bound), or
+    /// always computes it (`false`, the default). Call before the first step.
+    pub fn bound_force_floor(&mut self, bound: bool) {
+        self.work.floor_bound = bound;
+    }
+
+    /// The steps whose force floor was bounded ([`Self::bound_force_floor`]).
+    pub fn bounded_force_floors(&self) -> u64 {
+        self.work.floor_bounded
+    }
+
     /// The floating-point floor of the contact forces in this step, into `work.force_floor`
     /// \[N\]: the largest over the wheels of
     ///
@@ -120,7 +133,40 @@ impl Simulation {
     /// same formula as a true residual (`linalg::contact_update`, one wheel). A force change
     /// below it is round-off: for a 2.8e5 N moving mass at Δt = 2e-5 s it is 2.9e-2 N,
     /// far above ε |F| because the step matrix A ~ m/(β Δt²) is large.
-    fn force_floor(&mut self, s: f64) {
+    ///
+    /// With the bound on ([`Simulation::bound_force_floor`]) `|A⁻¹| e` at a multibody
+    /// vehicle's wheels is first bounded by its diagonal term plus the off-diagonal sum of its
+    /// row of `|A⁻¹|` times the largest `e` of the vehicle's block
+    /// (`BlockDiagonal::solve_abs_bound_at`, O(m) per block instead of O(m) per wheel), which
+    /// bounds every wheel's floor from above. The floor enters the iteration only through `max(tol, floor)` and the
+    /// stagnation test `change ≤ 16 floor` (here and in the detached solve), neither of which
+    /// differs from `change ≤ tol` while 16 floor < tol: when 16 (1 + 1e-12) times the largest
+    /// bound is below `tol` (the factor for the round-off of both sides, ≤ m ε ≈ 3e-14
+    /// relative for m ≤ 256), the bounds are kept and every
+    /// decision of the iteration is the one the exact floor gives; otherwise the exact floor
+    /// is computed. Only the reported `max_force_floor` differs (a bound, not the floor).
+    fn force_floor(&mut self, s: f64, tol: f64) {
+        if self.work.floor_bound {
+            self.floor_residual(s);
+            let w = &mut self.work;
+            self.a_matrix
+                .solve_abs_bound_at(&mut w.floor_residual, &self.wheel_dof);
+            let bound = self.wheel_floors(s);
+            if 16.0 * (1.0 + 1e-12) * bound < tol {
+                self.work.floor_bounded += 1;
+                return;
+            }
+        }
+        self.floor_residual(s);
+        let w = &mut self.work;
+        self.a_matrix
+            .solve_abs_at(&mut w.floor_residual, &self.wheel_dof);
+        self.wheel_floors(s);
+    }
+
+    /// `e = |A x| + |r| + s |G|` (module `resting`: zero on the held rows) into
+    /// `work.floor_residual` (see [`Self::force_floor`]).
+    fn floor_residual(&mut self, s: f64) {
         let w = &mut self.work;
         let e = &mut w.floor_residual;
         self.a_matrix.mul(&w.x, e);
@@ -137,7 +183,16 @@ impl Simulation {
             }
             e[self.wheel_dof[k]] += s * w.outputs[k].force.abs();
         }
-        self.a_matrix.solve_abs_at(e, &self.wheel_dof);
+    }
+
+    /// The live wheels' floors from `|A⁻¹| e` in `work.floor_residual` (at their patterns)
+    /// into `work.wheel_floor`, and `work.force_floor`; returns the largest over the live
+    /// wheels (see [`Self::force_floor`]).
+    fn wheel_floors(&mut self, s: f64) -> f64 {
+        let w = &mut self.work;
+        let e = &w.floor_residual;
+        let live = &self.resting.live;
+        let mut largest = 0.0f64;
         for &k in live {
             let iw = self.wheel_dof[k];
             let shapes = &w.shape_at_wheel[k];
@@ -162,10 +217,12 @@ impl Simulation {
             } else {
                 0.0
             };
+            largest = largest.max(w.wheel_floor[k]);
         }
         // A held wheel keeps the floor of its last step in the iteration (its state, and with
         // it its floor, is the same to round-off; module `resting`).
         w.force_floor = w.wheel_floor.iter().fold(0.0f64, |m, &f| m.max(f));
+        largest
     }
 
     /// One step attempt of size `dt`; on success the state is advanced.
@@ -319,7 +376,7 @@ impl Simulation {
             }
             Self::zero_held(&self.resting.held_dofs, &mut w.res);
             if it == 1 {
-                self.force_floor(s);
+                self.force_floor(s, tol);
             }
             let w = &mut self.work;
             let live = &self.resting.live;

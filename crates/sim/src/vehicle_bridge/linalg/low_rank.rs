@@ -24,9 +24,8 @@ mod folding;
 pub struct CapacitanceWork {
     /// Per wheel: A⁻¹ĝ (n; zero outside `support`).
     ainv_g: Vec<Vec<f64>>,
-    /// Per wheel: where A⁻¹ĝ can be non-zero, and A⁻¹ĝ there (in the same order).
+    /// Per wheel: where A⁻¹ĝ can be non-zero.
     support: Vec<Vec<usize>>,
-    on_support: Vec<Vec<f64>>,
     /// Per wheel: the blocks of A that A⁻¹ĝ touches.
     blocks: Vec<Vec<usize>>,
     /// Per wheel: the key of the stored A⁻¹ĝ (A's version, the pattern and ĝ on it).
@@ -146,7 +145,6 @@ impl CapacitanceWork {
         if self.ainv_g.first().is_some_and(|a| a.len() != n) {
             self.ainv_g.clear();
             self.support.clear();
-            self.on_support.clear();
             self.blocks.clear();
             self.key.clear();
             self.g_id.clear();
@@ -156,7 +154,6 @@ impl CapacitanceWork {
             self.fold_column.push(folding::FoldColumn::default());
             self.ainv_g.push(vec![0.0; n]);
             self.support.push(Vec::new());
-            self.on_support.push(Vec::new());
             self.blocks.push(Vec::new());
             self.key.push(SolveKey::default());
             self.g_id.push(0);
@@ -189,7 +186,6 @@ impl CapacitanceWork {
             &mut self.mark,
             self.stamp,
         );
-        self.keep_support_values(wheel);
     }
 
     /// Sets `ainv_g[wheel]` to ĝ (zero off `pattern`) for a pattern solve with the next
@@ -205,13 +201,6 @@ impl CapacitanceWork {
             x[i] = g[i];
         }
         self.stamp += 1;
-    }
-
-    /// Keeps `wheel`'s solved A⁻¹ĝ on its support in `on_support`.
-    fn keep_support_values(&mut self, wheel: usize) {
-        let values = &mut self.on_support[wheel];
-        values.clear();
-        values.extend(self.support[wheel].iter().map(|&i| self.ainv_g[wheel][i]));
     }
 
     /// The wheels folded into a band so far ([`contact_update`], "Folding").
@@ -479,8 +468,9 @@ pub fn contact_update(
         }
         let f = s * df[c];
         let wheel = active[c];
-        for (&i, g) in work.support[wheel].iter().zip(&work.on_support[wheel]) {
-            x[i] -= f * g;
+        let ainv_g = &work.ainv_g[wheel];
+        for &i in &work.support[wheel] {
+            x[i] -= f * ainv_g[i];
         }
     }
     // The folded wheels' force increments from the final Δx.

@@ -125,7 +125,7 @@ impl CapacitanceWork {
     /// folded blocks' part of `x ← A_c⁻¹ x` (x solved elsewhere already,
     /// [`BlockDiagonal::solve_in_place_deferring`]): each wheel's pattern solve without the
     /// folded blocks, then per folded block x and the wheels that touch it solved together
-    /// ([`BandedLu::solve_interleaved`]); then the wheels' supports' values. The same result,
+    /// ([`BandedLu::solve_interleaved`]). The same result,
     /// bit for bit, as solving x and the wheels one by one.
     pub(super) fn solve_wheels_folded(
         &mut self,
@@ -154,9 +154,6 @@ impl CapacitanceWork {
             if self.fold_used[d] {
                 self.solve_block_many(a, d, g_hat, pattern, x);
             }
-        }
-        for b in 0..self.batch.len() {
-            self.keep_support_values(self.batch[b]);
         }
     }
 
