@@ -18,6 +18,14 @@ use super::{CouplingSolver, Simulation, VehicleBridgeError};
 pub(super) const FOLD_TOLERANCE: f64 = 1e-3;
 
 impl Simulation {
+    /// Checks at run time that every wheel's v stays the same within a step attempt, as the
+    /// coupled step declares to the capacitance work space after each attempt's geometry
+    /// (`linalg::CapacitanceWork::new_geometry`; always checked in debug builds): a panic
+    /// naming the wheel if not. For tests; it costs a comparison of v per wheel and update.
+    pub fn verify_declared_geometry(&mut self, on: bool) {
+        self.work.cap.verify_declared_geometry(on);
+    }
+
     /// Quasi-Newton start without a contact evaluation: every contact law is replaced by its
     /// linearisation at the end of the previous step, `F ≈ F_n + k_n (δ − δ_n)`, with the
     /// previous column forces carried along with the wheel (modal loads
@@ -120,10 +128,12 @@ impl Simulation {
     /// same formula as a true residual (`linalg::contact_update`, one wheel). A force change
     /// below it is round-off: for a 2.8e5 N moving mass at Δt = 2e-5 s it is 2.9e-2 N,
     /// far above ε |F| because the step matrix A ~ m/(β Δt²) is large.
+    ///
+    /// On entry `work.floor_residual` holds A x of the current iterate (the caller formed it
+    /// for the residual: one product instead of two, the same values).
     fn force_floor(&mut self, s: f64) {
         let w = &mut self.work;
         let e = &mut w.floor_residual;
-        self.a_matrix.mul(&w.x, e);
         for range in &self.resting.live_rows {
             for (ei, ri) in e[range.clone()].iter_mut().zip(&w.r[range.clone()]) {
                 *ei = ei.abs() + ri.abs();
@@ -310,6 +320,10 @@ impl Simulation {
             // Residual R = A x − r − s Σ G_k, written as −R into `res` (on the rows outside
             // the held vehicles; theirs are zero).
             self.a_matrix.mul(&w.x, &mut w.res);
+            if it == 1 {
+                // A x of this iterate is also the force floor's (`force_floor`, below).
+                w.floor_residual.copy_from_slice(&w.res);
+            }
             residual_rows(&self.resting.live_rows, &w.r, &mut w.res);
             for &k in live {
                 for j in 0..w.span_modes[k] {
