@@ -39,6 +39,22 @@ fn random_vectors(rng: &mut ChaCha8Rng, n: usize, m: usize, wheel: usize) -> (Ve
     (v, g)
 }
 
+/// Per wheel: ĝ, v and the pattern.
+type Wheels = (Vec<Vec<f64>>, Vec<Vec<f64>>, Vec<Vec<usize>>);
+
+/// `wheels` wheels' ĝ and v (`random_vectors`, wheel k on DOF m + 2k) and their patterns.
+fn random_wheels(rng: &mut ChaCha8Rng, n: usize, m: usize, wheels: usize) -> Wheels {
+    let mut gs = Vec::new();
+    let mut vs = Vec::new();
+    for k in 0..wheels {
+        let (v, g) = random_vectors(rng, n, m, m + 2 * k);
+        vs.push(v);
+        gs.push(g);
+    }
+    let patterns = (0..wheels).map(|k| pattern(m, m + 2 * k)).collect();
+    (gs, vs, patterns)
+}
+
 /// Where a wheel's ĝ and v can be non-zero: the m modes and its own DOF.
 fn pattern(m: usize, wheel: usize) -> Vec<usize> {
     (0..m).chain([wheel]).collect()
@@ -321,14 +337,7 @@ fn reused_solves_equal_fresh_ones_bit_for_bit() {
     let (mut a, m) = random_system(&mut rng, wheels);
     let n = a.dimension();
     let s = 0.9;
-    let mut gs = Vec::new();
-    let mut vs = Vec::new();
-    for k in 0..wheels {
-        let (v, g) = random_vectors(&mut rng, n, m, m + 2 * k);
-        vs.push(v);
-        gs.push(g);
-    }
-    let patterns: Vec<Vec<usize>> = (0..wheels).map(|k| pattern(m, m + 2 * k)).collect();
+    let (mut gs, vs, patterns) = random_wheels(&mut rng, n, m, wheels);
     let compliance: Vec<f64> = (0..wheels).map(|k| 1e-7 * (1.0 + k as f64)).collect();
     let zero = vec![0.0; wheels];
     let mut kept = CapacitanceWork::new(n, wheels);
@@ -450,14 +459,7 @@ fn a_v_changed_within_a_declared_geometry_is_refused() {
     let wheels = 2;
     let (a, m) = random_system(&mut rng, wheels);
     let n = a.dimension();
-    let mut gs = Vec::new();
-    let mut vs = Vec::new();
-    for k in 0..wheels {
-        let (v, g) = random_vectors(&mut rng, n, m, m + 2 * k);
-        vs.push(v);
-        gs.push(g);
-    }
-    let patterns: Vec<Vec<usize>> = (0..wheels).map(|k| pattern(m, m + 2 * k)).collect();
+    let (gs, vs, patterns) = random_wheels(&mut rng, n, m, wheels);
     let mut work = CapacitanceWork::new(n, wheels);
     work.verify_declared_geometry(true);
     let mut update = |vs: &[Vec<f64>], work: &mut CapacitanceWork| {
