@@ -220,6 +220,8 @@ struct Work {
     /// Round-off bound of the step residual and its image under |A⁻¹| (n), and the contact
     /// forces' floating-point floor per wheel (see `Simulation::force_floor`).
     floor_residual: Vec<f64>,
+    /// A x of the first iterate of the step (for the floor's e; see `Simulation::force_floor`).
+    floor_ax: Vec<f64>,
     floor_ainv_g: Vec<f64>,
     /// Per wheel: its floor in the last step it took part in; the largest is `force_floor`.
     wheel_floor: Vec<f64>,

@@ -72,6 +72,8 @@ fn relative_difference(a: &[Vec<f64>], b: &[Vec<f64>]) -> f64 {
 fn compare(text: &str, expected_held: &[usize]) {
     let mut held_sim = simulation(text);
     held_sim.solve_detached_vehicles(false);
+    // Every wheel's v fixed within a step attempt, as the coupled step declares.
+    held_sim.verify_declared_geometry(true);
     let (held, held_steps, _) = history(held_sim);
     let mut full_sim = simulation(text);
     full_sim.hold_resting_vehicles(false);
@@ -144,7 +146,11 @@ fn detached_vehicles_equal_the_coupled_step_over_a_dip_after_the_span() {
 /// Runs `text` with and without the detached solve (the hold at rest on in both) and checks
 /// the histories (tolerances: `detached_vehicles_equal_the_coupled_step`).
 fn compare_detached(text: &str) {
-    let (detached, _, detached_steps) = history(simulation(text));
+    let (detached, _, detached_steps) = history({
+        let mut s = simulation(text);
+        s.verify_declared_geometry(true);
+        s
+    });
     let (coupled, _, none) = history({
         let mut s = simulation(text);
         s.solve_detached_vehicles(false);

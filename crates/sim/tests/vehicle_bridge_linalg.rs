@@ -39,6 +39,22 @@ fn random_vectors(rng: &mut ChaCha8Rng, n: usize, m: usize, wheel: usize) -> (Ve
     (v, g)
 }
 
+/// Per wheel: ĝ, v and the pattern.
+type Wheels = (Vec<Vec<f64>>, Vec<Vec<f64>>, Vec<Vec<usize>>);
+
+/// `wheels` wheels' ĝ and v (`random_vectors`, wheel k on DOF m + 2k) and their patterns.
+fn random_wheels(rng: &mut ChaCha8Rng, n: usize, m: usize, wheels: usize) -> Wheels {
+    let mut gs = Vec::new();
+    let mut vs = Vec::new();
+    for k in 0..wheels {
+        let (v, g) = random_vectors(rng, n, m, m + 2 * k);
+        vs.push(v);
+        gs.push(g);
+    }
+    let patterns = (0..wheels).map(|k| pattern(m, m + 2 * k)).collect();
+    (gs, vs, patterns)
+}
+
 /// Where a wheel's ĝ and v can be non-zero: the m modes and its own DOF.
 fn pattern(m: usize, wheel: usize) -> Vec<usize> {
     (0..m).chain([wheel]).collect()
@@ -321,14 +337,7 @@ fn reused_solves_equal_fresh_ones_bit_for_bit() {
     let (mut a, m) = random_system(&mut rng, wheels);
     let n = a.dimension();
     let s = 0.9;
-    let mut gs = Vec::new();
-    let mut vs = Vec::new();
-    for k in 0..wheels {
-        let (v, g) = random_vectors(&mut rng, n, m, m + 2 * k);
-        vs.push(v);
-        gs.push(g);
-    }
-    let patterns: Vec<Vec<usize>> = (0..wheels).map(|k| pattern(m, m + 2 * k)).collect();
+    let (mut gs, vs, patterns) = random_wheels(&mut rng, n, m, wheels);
     let compliance: Vec<f64> = (0..wheels).map(|k| 1e-7 * (1.0 + k as f64)).collect();
     let zero = vec![0.0; wheels];
     let mut kept = CapacitanceWork::new(n, wheels);
@@ -376,22 +385,26 @@ fn reused_solves_equal_fresh_ones_bit_for_bit() {
         )
     };
     let all = [0, 1, 2, 3];
-    // The wheels share the modes: one group.
+    // The wheels share the modes: one group. The coupling groups are kept from the update
+    // before while the active wheels and their A⁻¹ĝ are the same (`groups_kept`).
     assert_eq!(
         update(&a, &gs, &vs, &all, &mut rng, &mut kept),
         (4, 0, 0, 1)
     );
+    assert_eq!(kept.groups_kept(), 0);
     // Same A, ĝ and v, a new right-hand side: every solve and the entries are reused.
     assert_eq!(
         update(&a, &gs, &vs, &all, &mut rng, &mut kept),
         (0, 4, 1, 0)
     );
+    assert_eq!(kept.groups_kept(), 1);
     // One ĝ changed in its last bit: only that wheel is solved again, the entries formed again.
     gs[2][3] = f64::from_bits(gs[2][3].to_bits() + 1);
     assert_eq!(
         update(&a, &gs, &vs, &all, &mut rng, &mut kept),
         (1, 3, 0, 1)
     );
+    assert_eq!(kept.groups_kept(), 1);
     // One v changed in its last bit: the solves are reused, the entries formed again.
     let mut changed = vs.clone();
     changed[1][0] = f64::from_bits(changed[1][0].to_bits() + 1);
@@ -403,11 +416,13 @@ fn reused_solves_equal_fresh_ones_bit_for_bit() {
         update(&a, &gs, &changed, &all, &mut rng, &mut kept),
         (0, 4, 1, 0)
     );
+    assert_eq!(kept.groups_kept(), 3);
     // A smaller active set reuses the solves it has and forms its group's entries.
     assert_eq!(
         update(&a, &gs, &vs, &[1, 3], &mut rng, &mut kept),
         (0, 2, 0, 1)
     );
+    assert_eq!(kept.groups_kept(), 3);
     // A rebuilt A (even with the same blocks) invalidates every stored solve and entry.
     let (rebuilt, _) = random_system(&mut ChaCha8Rng::seed_from_u64(11), wheels);
     a = rebuilt;
@@ -415,6 +430,7 @@ fn reused_solves_equal_fresh_ones_bit_for_bit() {
         update(&a, &gs, &vs, &all, &mut rng, &mut kept),
         (4, 0, 0, 1)
     );
+    assert_eq!(kept.groups_kept(), 3);
     // A declared geometry: v is not compared; the entries are formed once per declaration.
     kept.new_geometry();
     assert_eq!(
@@ -430,4 +446,48 @@ fn reused_solves_equal_fresh_ones_bit_for_bit() {
         update(&a, &gs, &changed, &all, &mut rng, &mut kept),
         (0, 4, 0, 1)
     );
+}
+
+/// The contract of `CapacitanceWork::new_geometry` (v fixed until the next declaration) is
+/// checked when asked for: the same v under one declaration and a changed v under a new one
+/// pass; a v changed in its last bit under the same declaration stops the update, naming
+/// the wheel.
+#[test]
+#[should_panic(expected = "wheel 1's v changed within a declared geometry")]
+fn a_v_changed_within_a_declared_geometry_is_refused() {
+    let mut rng = ChaCha8Rng::seed_from_u64(12);
+    let wheels = 2;
+    let (a, m) = random_system(&mut rng, wheels);
+    let n = a.dimension();
+    let (gs, vs, patterns) = random_wheels(&mut rng, n, m, wheels);
+    let mut work = CapacitanceWork::new(n, wheels);
+    work.verify_declared_geometry(true);
+    let mut update = |vs: &[Vec<f64>], work: &mut CapacitanceWork| {
+        let mut x: Vec<f64> = (0..n).map(|_| rng.random::<f64>() - 0.5).collect();
+        let mut df = vec![0.0; wheels];
+        contact_update(
+            &a,
+            0.9,
+            &gs,
+            vs,
+            &patterns,
+            &[0, 1],
+            &[1e-7, 2e-7],
+            &[0.0, 0.0],
+            &mut x,
+            &mut df,
+            work,
+        )
+        .unwrap();
+    };
+    let mut changed = vs.clone();
+    changed[1][0] = f64::from_bits(changed[1][0].to_bits() + 1);
+    work.new_geometry();
+    update(&vs, &mut work);
+    update(&vs, &mut work);
+    work.new_geometry();
+    update(&changed, &mut work);
+    update(&changed, &mut work);
+    // The contract broken: v changes under the same declaration.
+    update(&vs, &mut work);
 }

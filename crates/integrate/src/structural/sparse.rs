@@ -70,7 +70,7 @@ pub fn sparse_mul_add2_rows(
 /// `f(columns, values, out_i)` for each row `i` of `a` in `rows`, with the row's column indices
 /// and values.
 #[inline(always)]
-fn for_rows(
+pub(crate) fn for_rows(
     a: SparseRowMatRef<'_, usize, f64>,
     out: &mut [f64],
     rows: impl Iterator<Item = Range<usize>>,
@@ -89,7 +89,7 @@ fn for_rows(
 
 /// One row's `Σ_j a_ij x_j`, summed in column order.
 #[inline(always)]
-fn row_dot(cols: &[usize], vals: &[f64], x: &[f64]) -> f64 {
+pub(crate) fn row_dot(cols: &[usize], vals: &[f64], x: &[f64]) -> f64 {
     cols.iter().zip(vals).map(|(&j, v)| v * x[j]).sum()
 }
 

@@ -395,6 +395,7 @@ impl Simulation {
             },
             dense: DenseWork::default(),
             floor_residual: vec![0.0; n],
+            floor_ax: vec![0.0; n],
             floor_ainv_g: vec![0.0; n],
             wheel_floor: vec![0.0; nw],
             force_floor: 0.0,

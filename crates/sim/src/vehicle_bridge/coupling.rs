@@ -18,6 +18,14 @@ use super::{CouplingSolver, Simulation, VehicleBridgeError};
 pub(super) const FOLD_TOLERANCE: f64 = 1e-3;
 
 impl Simulation {
+    /// Checks at run time that every wheel's v stays the same within a step attempt, as the
+    /// coupled step declares to the capacitance work space after each attempt's geometry
+    /// (`linalg::CapacitanceWork::new_geometry`; always checked in debug builds): a panic
+    /// naming the wheel if not. For tests; it costs a comparison of v per wheel and update.
+    pub fn verify_declared_geometry(&mut self, on: bool) {
+        self.work.cap.verify_declared_geometry(on);
+    }
+
     /// Quasi-Newton start without a contact evaluation: every contact law is replaced by its
     /// linearisation at the end of the previous step, `F ≈ F_n + k_n (δ − δ_n)`, with the
     /// previous column forces carried along with the wheel (modal loads
@@ -165,11 +173,13 @@ impl Simulation {
     }
 
     /// `e = |A x| + |r| + s |G|` (module `resting`: zero on the held rows) into
-    /// `work.floor_residual` (see [`Self::force_floor`]).
+    /// `work.floor_residual` (see [`Self::force_floor`]); A x of the current iterate is in
+    /// `work.floor_ax` (the caller formed it for the residual: one product instead of two,
+    /// the same values).
     fn floor_residual(&mut self, s: f64) {
         let w = &mut self.work;
         let e = &mut w.floor_residual;
-        self.a_matrix.mul(&w.x, e);
+        e.copy_from_slice(&w.floor_ax);
         for range in &self.resting.live_rows {
             for (ei, ri) in e[range.clone()].iter_mut().zip(&w.r[range.clone()]) {
                 *ei = ei.abs() + ri.abs();
@@ -367,6 +377,10 @@ impl Simulation {
             // Residual R = A x − r − s Σ G_k, written as −R into `res` (on the rows outside
             // the held vehicles; theirs are zero).
             self.a_matrix.mul(&w.x, &mut w.res);
+            if it == 1 {
+                // A x of this iterate is also the force floor's (`force_floor`, below).
+                w.floor_ax.copy_from_slice(&w.res);
+            }
             residual_rows(&self.resting.live_rows, &w.r, &mut w.res);
             for &k in live {
                 for j in 0..w.span_modes[k] {

@@ -136,11 +136,15 @@ impl Simulation {
         for (v, veh) in self.vehicles.iter().enumerate() {
             let wheels = veh.first_wheel..veh.first_wheel + (veh.dofs.len() - veh.own().len());
             let off_span = wheels.clone().all(|k| w.span_modes[k] == 0);
-            let smooth = wheels
-                .clone()
-                .all(|k| w.r_at_wheel[k] == 0.0 && w.r_at_columns[k].iter().all(|&rc| rc == 0.0));
-            if !(off_span && smooth) {
-                r.at_rest[v] = false;
+            // Once released, a vehicle is never at rest again: the rail under it matters only
+            // while it is.
+            if r.at_rest[v] {
+                let smooth = wheels.clone().all(|k| {
+                    w.r_at_wheel[k] == 0.0 && w.r_at_columns[k].iter().all(|&rc| rc == 0.0)
+                });
+                if !(off_span && smooth) {
+                    r.at_rest[v] = false;
+                }
             }
             let part = if !evaluated {
                 Part::Coupled

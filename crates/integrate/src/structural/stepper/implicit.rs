@@ -2,7 +2,7 @@
 //! corrector.
 
 use super::super::linalg::{check_vector, norm_inf};
-use super::super::sparse::{rows_outside, sparse_mul_add_rows};
+use super::super::sparse::{for_rows, row_dot, rows_outside, sparse_mul_add_rows};
 use super::super::{StepEquation, StructuralMethod, StructuralSystem};
 use crate::IntegrateError;
 
@@ -170,19 +170,47 @@ impl StructuralStepper {
         // The predictors q̃ = q + Δt v + q_a a*, ṽ = v + v_a a* (a* the start acceleration).
         let (q, v, a, a_prev, f_int) = (&self.q, &self.v, &self.a, &self.a_prev, &self.f_int);
         let shift = k.a_shift;
-        let start = |j: usize| start_acceleration(a[j], a_prev[j], shift);
-        for range in rows_outside(n, &self.frozen) {
-            for i in range {
-                let a0 = start(i);
-                eq.q_pred[i] = q[i] + dt * v[i] + k.q_a * a0;
-                eq.v_pred[i] = v[i] + k.v_a * a0;
-                let row = row_ptr[i]..row_ptr[i + 1];
-                let inertia: f64 = col_idx[row.clone()]
-                    .iter()
-                    .zip(&mass_val[row])
-                    .map(|(&j, m)| m * start(j))
-                    .sum();
-                eq.history_force[i] = k.alpha_m * inertia + k.alpha_f * f_int[i];
+        if shift == 0.0 {
+            // a* = a (a constant step): the same operations over slices, M a by rows.
+            for range in rows_outside(n, &self.frozen) {
+                let rows = eq.q_pred[range.clone()]
+                    .iter_mut()
+                    .zip(&mut eq.v_pred[range.clone()])
+                    .zip(&q[range.clone()])
+                    .zip(&v[range.clone()])
+                    .zip(&a[range.clone()]);
+                for ((((qp, vp), &qi), &vi), &ai) in rows {
+                    *qp = qi + dt * vi + k.q_a * ai;
+                    *vp = vi + k.v_a * ai;
+                }
+                let history = &mut eq.history_force;
+                for_rows(
+                    mass,
+                    history,
+                    std::iter::once(range.clone()),
+                    |cols, vals, h| {
+                        *h = row_dot(cols, vals, a);
+                    },
+                );
+                for (h, &f) in history[range.clone()].iter_mut().zip(&f_int[range]) {
+                    *h = k.alpha_m * *h + k.alpha_f * f;
+                }
+            }
+        } else {
+            let start = |j: usize| start_acceleration(a[j], a_prev[j], shift);
+            for range in rows_outside(n, &self.frozen) {
+                for i in range {
+                    let a0 = start(i);
+                    eq.q_pred[i] = q[i] + dt * v[i] + k.q_a * a0;
+                    eq.v_pred[i] = v[i] + k.v_a * a0;
+                    let row = row_ptr[i]..row_ptr[i + 1];
+                    let inertia: f64 = col_idx[row.clone()]
+                        .iter()
+                        .zip(&mass_val[row])
+                        .map(|(&j, m)| m * start(j))
+                        .sum();
+                    eq.history_force[i] = k.alpha_m * inertia + k.alpha_f * f_int[i];
+                }
             }
         }
         if let Some(c) = &self.damping_sparse {

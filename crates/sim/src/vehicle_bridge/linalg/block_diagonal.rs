@@ -21,6 +21,9 @@ pub struct BlockDiagonal {
     owner: Vec<Option<Owner>>,
     /// The position of each index of a dense block within it.
     local: Vec<usize>,
+    /// Every index i below it is a 1×1 block with block id i (the bridge modes, pushed
+    /// first): pattern solves take them without looking up their owner.
+    unit_prefix: usize,
     /// Changes whenever the matrix does (unique across all matrices of the process), so that
     /// solves cached against it (`low_rank::CapacitanceWork`) know when they are stale.
     version: u64,
@@ -203,6 +206,7 @@ impl BlockDiagonal {
             dense: Vec::new(),
             owner: vec![None; n],
             local: vec![0; n],
+            unit_prefix: 0,
             version: next_version(),
             held: Vec::new(),
         }
@@ -250,6 +254,7 @@ impl BlockDiagonal {
         self.dense.clear();
         self.owner.clear();
         self.owner.resize(self.n, None);
+        self.unit_prefix = 0;
         self.version = next_version();
     }
 
@@ -273,6 +278,7 @@ impl BlockDiagonal {
             (None, None)
         };
         for (r, &i) in indices.iter().enumerate() {
+            self.reowned(i);
             self.owner[i] = Some(Owner::Dense(self.dense.len()));
             self.local[i] = r;
         }
@@ -376,6 +382,10 @@ impl BlockDiagonal {
         if a == 0.0 || !a.is_finite() {
             return Err(SINGULAR_BLOCK);
         }
+        self.reowned(i);
+        if i == self.unit_prefix && self.blocks.len() == i {
+            self.unit_prefix += 1;
+        }
         self.owner[i] = Some(Owner::Small(self.blocks.len()));
         self.blocks.push((i, NONE, [1.0 / a, 0.0, 0.0, 0.0]));
         self.entries.push([a, 0.0, 0.0, 0.0]);
@@ -398,6 +408,8 @@ impl BlockDiagonal {
         if det == 0.0 || !det.is_finite() {
             return Err(SINGULAR_BLOCK);
         }
+        self.reowned(i);
+        self.reowned(j);
         self.owner[i] = Some(Owner::Small(self.blocks.len()));
         self.owner[j] = Some(Owner::Small(self.blocks.len()));
         self.blocks
@@ -405,6 +417,12 @@ impl BlockDiagonal {
         self.entries.push([a, b, c, d]);
         self.version = next_version();
         Ok(())
+    }
+
+    /// Index `i` gets a new block: the run of leading 1×1 blocks (`unit_prefix`) ends before
+    /// it if it was in it.
+    fn reowned(&mut self, i: usize) {
+        self.unit_prefix = self.unit_prefix.min(i);
     }
 
     /// Number of blocks (small and dense): the range of [`Self::block_of`].
@@ -476,8 +494,20 @@ impl BlockDiagonal {
     ) {
         support.clear();
         blocks.clear();
+        let unit = self.unit_prefix;
         for &i in pattern {
             if x[i] == 0.0 {
+                continue;
+            }
+            if i < unit {
+                // A leading 1×1 block, whose id is i (`unit_prefix`): as `Owner::Small` below.
+                if mark[i] == stamp {
+                    continue;
+                }
+                mark[i] = stamp;
+                blocks.push(i);
+                x[i] *= self.blocks[i].2[0];
+                support.push(i);
                 continue;
             }
             let (Some(owner), Some(id)) = (self.owner.get(i).copied().flatten(), self.block_of(i))

@@ -9,6 +9,7 @@ use super::{BlockDiagonal, Singular};
 
 mod entries;
 mod folding;
+mod groups;
 
 /// Work space of [`contact_update`]: A⁻¹ĝ per wheel with its support and blocks, the
 /// coupling groups, and the LU storage of each capacitance size met (allocated at its first
@@ -44,6 +45,8 @@ pub struct CapacitanceWork {
     /// The active wheels ordered by group, and the start of each group in it.
     order: Vec<usize>,
     group_start: Vec<usize>,
+    /// What `order` and `group_start` were formed from (kept while it is the same).
+    groups_key: groups::GroupsKey,
     rhs: Vec<f64>,
     /// The capacitance matrix of one group (row-major).
     cap: Vec<f64>,
@@ -61,6 +64,8 @@ pub struct CapacitanceWork {
     fold_lu: Vec<BandedLu>,
     /// Folded wheels so far (statistics).
     folds: u64,
+    /// Updates whose coupling groups were kept from the last one (statistics).
+    groups_kept: u64,
     /// Per dense block: what `fold_lu` was factorised from (A's version, 0 for nothing
     /// valid, and the diagonal additions bit for bit), and the factorisations so reused.
     fold_key: Vec<(u64, Vec<(usize, u64)>)>,
@@ -149,6 +154,7 @@ impl CapacitanceWork {
             self.key.clear();
             self.g_id.clear();
             self.fold_column.clear();
+            self.groups_key.valid = false;
         }
         while self.ainv_g.len() < k {
             self.fold_column.push(folding::FoldColumn::default());
@@ -162,6 +168,7 @@ impl CapacitanceWork {
             self.mark = vec![0; blocks];
             self.first = vec![(0, 0); blocks];
             self.stamp = 0;
+            self.groups_key.valid = false;
         }
     }
 
@@ -228,19 +235,16 @@ impl CapacitanceWork {
         (self.solves, self.reused)
     }
 
+    /// Updates whose coupling groups were kept from the update before (statistics).
+    pub fn groups_kept(&self) -> u64 {
+        self.groups_kept
+    }
+
     /// The next stamp (never 0, the initial mark).
     fn next_stamp(&mut self) -> u64 {
         self.stamp += 1;
         self.stamp
     }
-}
-
-fn find(parent: &mut [usize], mut a: usize) -> usize {
-    while parent[a] != a {
-        parent[a] = parent[parent[a]];
-        a = parent[a];
-    }
-    a
 }
 
 /// Work space of [`dense_contact_update`]: the LU of each bordered size n + k met so far
@@ -360,52 +364,18 @@ pub fn contact_update(
     if folding {
         work.solve_wheels_folded(a, g_hat, pattern, x);
     }
-    // Coupling groups: wheels touching a common block.
-    let update = work.next_stamp();
-    work.parent.clear();
-    work.parent.extend(0..k);
-    for c in 0..k {
-        if folded(work, c) {
-            continue;
-        }
-        // The wheel last joined (the wheels on the span meet the same first wheel on every
-        // mode block: one union is enough).
-        let mut joined = usize::MAX;
-        for &b in &work.blocks[active[c]] {
-            let (seen, first) = work.first[b];
-            if seen == update {
-                if first == joined {
-                    continue;
-                }
-                joined = first;
-                let (ra, rb) = (find(&mut work.parent, c), find(&mut work.parent, first));
-                if ra != rb {
-                    work.parent[ra.max(rb)] = ra.min(rb);
-                }
-            } else {
-                work.first[b] = (update, c);
-            }
+    // Coupling groups: wheels touching a common block (kept from the last update when formed
+    // from the same wheels and blocks, `GroupsKey`; always formed when wheels are folded).
+    if !folding && work.groups_key.matches(a.version(), active, &work.g_id) {
+        work.groups_kept += 1;
+    } else {
+        work.form_groups(active, folding);
+        if folding {
+            work.groups_key.valid = false;
+        } else {
+            work.groups_key.set(a.version(), active, &work.g_id);
         }
     }
-    // Group the wheels (stable: by root, then position; roots are the smallest member).
-    work.order.clear();
-    work.group_start.clear();
-    for c in 0..k {
-        let root = find(&mut work.parent, c);
-        work.parent[c] = root;
-    }
-    for root in 0..k {
-        if work.parent[root] != root || folded(work, root) {
-            continue;
-        }
-        work.group_start.push(work.order.len());
-        for c in root..k {
-            if work.parent[c] == root {
-                work.order.push(c);
-            }
-        }
-    }
-    work.group_start.push(work.order.len());
     // vᵀx over the pattern (v is zero elsewhere).
     let v_dot =
         |c: usize, y: &[f64]| pattern_dot(pattern[active[c]].as_ref(), v[active[c]].as_ref(), y);

@@ -45,6 +45,10 @@ pub(super) struct EntryCache {
     groups: Vec<GroupEntries>,
     /// The identities of the group being formed (scratch).
     ids: Vec<(u64, u64)>,
+    /// Check the declared geometry's contract ([`CapacitanceWork::verify_declared_geometry`];
+    /// always in debug builds), and per wheel the geometry and v it was last checked with.
+    verify: bool,
+    declared: Vec<(u64, SolveKey)>,
     /// Entries kept and formed (statistics for tests).
     pub(super) kept: u64,
     pub(super) formed: u64,
@@ -60,6 +64,9 @@ impl EntryCache {
     /// comparing v on `pattern` with the last v seen (even; a new one if it changed).
     fn v_identity(&mut self, wheel: usize, v: &[f64], pattern: &[usize]) -> u64 {
         if self.geometry != 0 {
+            if self.verify || cfg!(debug_assertions) {
+                self.check_declared(wheel, v, pattern);
+            }
             return (self.geometry << 1) | 1;
         }
         if self.v_key.len() <= wheel {
@@ -73,6 +80,26 @@ impl EntryCache {
             self.v_id[wheel] = self.next_id << 1;
         }
         self.v_id[wheel]
+    }
+
+    /// Panics if wheel `wheel`'s v on `pattern` differs, in any bit, from the v it had at its
+    /// first use under the declared geometry (the caller's contract,
+    /// [`CapacitanceWork::new_geometry`]): a programming error that would give wrong
+    /// capacitance entries.
+    fn check_declared(&mut self, wheel: usize, v: &[f64], pattern: &[usize]) {
+        if self.declared.len() <= wheel {
+            self.declared.resize_with(wheel + 1, Default::default);
+        }
+        let (geometry, key) = &mut self.declared[wheel];
+        if *geometry != self.geometry {
+            *geometry = self.geometry;
+            key.set(1, v, pattern);
+        } else {
+            assert!(
+                key.matches(1, v, pattern),
+                "CapacitanceWork::new_geometry: wheel {wheel}'s v changed within a declared geometry (v must be fixed until the next declaration)"
+            );
+        }
     }
 }
 
@@ -135,9 +162,20 @@ impl CapacitanceWork {
     /// a declaration (the default) each v is compared with the last one seen. A declaration
     /// that does not hold gives wrong capacitance entries: only for callers that write v from
     /// the geometry alone.
+    ///
+    /// The contract is checked in debug builds, and in any build after
+    /// [`Self::verify_declared_geometry`]: each wheel's v is then compared with its v at its
+    /// first use under the declaration (a panic names the wheel if it differs).
     pub fn new_geometry(&mut self) {
         self.entries.geometries += 1;
         self.entries.geometry = self.entries.geometries;
+    }
+
+    /// Checks the contract of [`Self::new_geometry`] at run time (`true`; it costs a
+    /// comparison of v per wheel and update, as without a declaration), or only in debug builds
+    /// (`false`, the default).
+    pub fn verify_declared_geometry(&mut self, on: bool) {
+        self.entries.verify = on;
     }
 
     /// The capacitance groups whose entries were kept and formed so far (statistics).
