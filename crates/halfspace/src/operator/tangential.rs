@@ -85,6 +85,11 @@ pub trait TangentialInfluenceOperator {
     /// (C_xx, C_yy) of an element on itself (C_xy vanishes there by symmetry).
     fn own_coefficients(&self, kernel: TangentialKernel) -> (f64, f64);
 
+    /// (A_xx, A_xy, A_yy) of the direct kernel A at the element offset (o_x, o_y) =
+    /// observation − loaded element, |o_x| ≤ nx (one element beyond the grid) and |o_y| < ny:
+    /// read from the kernel table where it holds the offset, else from the closed form.
+    fn direct_coefficient(&self, offset: (isize, isize)) -> (f64, f64, f64);
+
     /// S += C e_J Δ: the column of element J = `element` (ix, iy) times the traction change
     /// Δ = `change`, over the observation box `columns` = (ix0, ix1) × `rows` = (iy0, iy1)
     /// (inclusive). Called once per element per sweep: no allocation.
@@ -266,6 +271,18 @@ fn convolve(
     }
 }
 
+/// (A_xx, A_xy, A_yy) at the element offset `offset` of `grid` from the closed form.
+fn closed_form(material: &Material, grid: &Grid, (ox, oy): (isize, isize)) -> (f64, f64, f64) {
+    let t = tangential_influence(
+        material,
+        ox as f64 * grid.dx,
+        oy as f64 * grid.dy,
+        grid.dx,
+        grid.dy,
+    );
+    (t.xx, t.xy, t.yy)
+}
+
 fn sub(a: &mut [f64], b: &[f64]) {
     for (x, y) in a.iter_mut().zip(b) {
         *x -= y;
@@ -381,6 +398,17 @@ impl TangentialInfluenceOperator for FftTangentialInfluence {
         let centre = (ny - 1) * (2 * nx - 1) + (nx - 1);
         let set = block(&self.direct, &self.steady, &self.shifted, kernel);
         (set.xx[centre], set.yy[centre])
+    }
+
+    fn direct_coefficient(&self, (ox, oy): (isize, isize)) -> (f64, f64, f64) {
+        let (nx, ny) = (self.grid.nx as isize, self.grid.ny as isize);
+        if ox.abs() < nx && oy.abs() < ny {
+            let i = ((oy + ny - 1) * (2 * nx - 1) + ox + nx - 1) as usize;
+            let d = &self.direct;
+            (d.xx[i], d.xy[i], d.yy[i])
+        } else {
+            closed_form(&self.material, &self.grid, (ox, oy))
+        }
     }
 
     /// Reads contiguous rows of the centred tables.
@@ -533,6 +561,10 @@ impl TangentialInfluenceOperator for DirectTangentialInfluence {
                 })
                 .sum::<f64>();
         }
+    }
+
+    fn direct_coefficient(&self, offset: (isize, isize)) -> (f64, f64, f64) {
+        closed_form(&self.material, &self.grid, offset)
     }
 
     fn own_coefficients(&self, kernel: TangentialKernel) -> (f64, f64) {

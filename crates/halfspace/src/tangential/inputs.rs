@@ -86,6 +86,13 @@ pub enum NkPreconditioner {
     /// The diagonal of the Jacobian (the solver's preconditioner before the line solve; kept
     /// for comparison).
     Jacobi,
+    /// The upstream line solve with a two-level correction on 4 × 4 blocks whose coarse
+    /// matrix is the Galerkin matrix of the line-preconditioned operator, built without
+    /// products (near entries from the kernel table, far field by a point-force convolution on
+    /// the grid of blocks) and solved by a few inner GMRES iterations; the outer iteration is
+    /// flexible GMRES. Its product count stays bounded as the grid grows (docs/tangential.md
+    /// "Performance", issue #18).
+    TwoLevel,
 }
 
 /// Controls of the tangential iteration.

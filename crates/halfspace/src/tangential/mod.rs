@@ -67,7 +67,11 @@
 //! and η‖Δp‖_rms ≤ tol‖p‖_rms; if it does not within min(`max_iter`, 100) steps the Gauss–Seidel
 //! reference continues from its iterate ([`TangentialSolution::steady_fallback`]). Files
 //! `steady_nk.rs` (the Newton iteration and J), `nk_precondition.rs` (the preconditioners) and
-//! `gmres.rs`.
+//! `gmres.rs`. The option [`NkPreconditioner::TwoLevel`] adds a coarse correction on 4 × 4
+//! blocks whose Galerkin matrix of the line-preconditioned operator is built from the kernel
+//! tables without products and solved by a few inner GMRES iterations inside flexible GMRES
+//! (`two_level/`): its product count stays bounded as the grid grows (issue #18); it is not
+//! the default (docs/tangential.md "Performance").
 //!
 //! **Nested start** ([`TangentialOptions::nested_start`], default on; references.md §C3.12).
 //! A cold Newton–Krylov solve (no previous solution on this solver) on a grid of at least
@@ -111,6 +115,7 @@ mod newton;
 mod nk_precondition;
 mod steady_nk;
 mod sweep;
+mod two_level;
 
 use crate::error::{ContactError, finite, positive};
 use crate::grid::Grid;

@@ -44,7 +44,7 @@ pub(super) struct NewtonSystem<'a> {
 
 impl NewtonSystem<'_> {
     /// The diagonal entry of the slip row of element k: |S| + g t·C(0) t.
-    fn slip_diagonal(&self, k: usize) -> f64 {
+    pub(super) fn slip_diagonal(&self, k: usize) -> f64 {
         let (dx, dy) = self.own;
         let (tx, ty) = (self.tx[k], self.ty[k]);
         self.slip_speed[k] + self.bound[k] * (tx * tx * dx + ty * ty * dy)

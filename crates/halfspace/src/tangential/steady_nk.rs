@@ -1,8 +1,9 @@
 //! Steady rolling by a semismooth Newton–Krylov iteration on the adhesion/slip split
 //! (module documentation of [`super`], "Steady-rolling solver").
 
-use super::gmres::{LinearProblem, gmres};
+use super::gmres::{GmresWork, LinearProblem, gmres, gmres_with};
 use super::nk_precondition::{Class, NewtonSystem};
+use super::two_level::TwoLevel;
 use super::{NkPreconditioner, TangentialOptions, TangentialSolver};
 use crate::operator::{TangentialInfluenceOperator, TangentialKernel, Update};
 
@@ -10,6 +11,10 @@ use crate::operator::{TangentialInfluenceOperator, TangentialKernel, Update};
 const RESTART: usize = 40;
 /// Product limit of one inner solve.
 const INNER_PRODUCTS: usize = 200;
+/// The smallest grid (elements) on which [`NkPreconditioner::TwoLevel`] adds its coarse
+/// correction; smaller grids (the 44 × 44 case, the coarse levels of a nested start) use the
+/// line solve alone, which costs less there (docs/tangential.md "Performance").
+const TWO_LEVEL_MIN: usize = 6000;
 /// Newton-step limit before the Gauss–Seidel fallback (at most `max_iter`): the measured cases
 /// need 5–15.
 const MAX_NEWTON: usize = 100;
@@ -18,6 +23,8 @@ const MAX_NEWTON: usize = 100;
 struct Jacobian<'a, T: TangentialInfluenceOperator> {
     op: &'a mut T,
     sys: NewtonSystem<'a>,
+    /// The two-level correction ([`NkPreconditioner::TwoLevel`]), built for `sys`.
+    two_level: Option<&'a mut TwoLevel>,
     products: usize,
     wx: Vec<f64>,
     wy: Vec<f64>,
@@ -55,7 +62,10 @@ impl<T: TangentialInfluenceOperator> LinearProblem for Jacobian<'_, T> {
 
     /// The upstream line solve or the diagonal of J ([`NkPreconditioner`]).
     fn precondition(&mut self, r: &[f64], out: &mut [f64]) {
-        self.sys.precondition(r, out);
+        match self.two_level.as_deref_mut() {
+            Some(t) => t.apply(&self.sys, r, out),
+            None => self.sys.precondition(r, out),
+        }
     }
 }
 
@@ -110,8 +120,19 @@ impl<T: TangentialInfluenceOperator> TangentialSolver<T> {
         let own = self.operator.own_coefficients(TangentialKernel::Steady);
         let upstream = match options.nk_preconditioner {
             NkPreconditioner::Jacobi => None,
-            NkPreconditioner::UpstreamLine => Some(self.upstream_coefficients()),
+            NkPreconditioner::UpstreamLine | NkPreconditioner::TwoLevel => {
+                Some(self.upstream_coefficients())
+            }
         };
+        // Below TWO_LEVEL_MIN elements the line solve alone is cheaper.
+        let mut two_level = (options.nk_preconditioner == NkPreconditioner::TwoLevel
+            && n >= TWO_LEVEL_MIN)
+            .then(|| {
+                (
+                    TwoLevel::new(&self.operator),
+                    GmresWork::new(2 * n, RESTART, true),
+                )
+            });
         if !options.warm_start && !self.has_previous {
             self.px.fill(0.0);
             self.py.fill(0.0);
@@ -193,18 +214,31 @@ impl<T: TangentialInfluenceOperator> TangentialSolver<T> {
                 break Ok(());
             }
             let (wx, wy, ux, uy) = std::mem::take(&mut jac_scratch);
+            let sys = NewtonSystem {
+                class: &class,
+                tx: &tx,
+                ty: &ty,
+                slip_speed: &slip_speed,
+                bound: &self.bound,
+                own,
+                upstream,
+                nx: g.nx,
+            };
+            let (coarse, work) = match two_level.as_mut() {
+                Some((t, w)) => {
+                    // E is rebuilt when the split changed; with the same split it is kept
+                    // (only the slip tangents and speeds differ).
+                    if changed > 0 || report.newton == 1 {
+                        t.build(&sys);
+                    }
+                    (Some(t), Some(w))
+                }
+                None => (None, None),
+            };
             let mut jac = Jacobian {
                 op: &mut self.operator,
-                sys: NewtonSystem {
-                    class: &class,
-                    tx: &tx,
-                    ty: &ty,
-                    slip_speed: &slip_speed,
-                    bound: &self.bound,
-                    own,
-                    upstream,
-                    nx: g.nx,
-                },
+                sys,
+                two_level: coarse,
                 products: 0,
                 wx,
                 wy,
@@ -214,7 +248,11 @@ impl<T: TangentialInfluenceOperator> TangentialSolver<T> {
             // The relative residual GMRES reached: η, or more when it stopped at its product
             // limit; the stopping test below uses the larger, so a step solved less tightly
             // than asked cannot end the iteration early (docs/tangential.md).
-            let reached = gmres(&mut jac, &f, &mut d, eta, RESTART, INNER_PRODUCTS).max(eta);
+            let reached = match work {
+                Some(w) => gmres_with(&mut jac, &f, &mut d, eta, INNER_PRODUCTS, w),
+                None => gmres(&mut jac, &f, &mut d, eta, RESTART, INNER_PRODUCTS),
+            }
+            .max(eta);
             self.products += jac.products;
             jac_scratch = (jac.wx, jac.wy, jac.ux, jac.uy);
             // Update: tractions in adhesion, angles in slip (a step of at most 0.5 rad).
