@@ -1,6 +1,7 @@
 //! `dyncontact bench tangential`: steady rolling of CONTACT's `tractcurv` ellipse with
-//! creepage prescribed, by the default Newton–Krylov solver (upstream line preconditioner,
-//! nested start), the same with the two-level preconditioner (against the grid size only),
+//! creepage prescribed, by the Newton–Krylov solver with the upstream line preconditioner and
+//! the nested start, the same with the two-level preconditioner (the default since
+//! 2026-11-27, which is the line solve alone below 6000 elements; against the grid size only),
 //! the same from zero tractions, with the Jacobi preconditioner and the
 //! Gauss–Seidel reference: a 44 × 44 table over ξ (cold and warm starts), the cost against
 //! the grid size (44² … 400²: wall and CPU time, iterations, operator products on the fine
@@ -43,8 +44,8 @@ fn tractcurv(n: usize) -> Result<(Grid, Material, NormalSolution, Hertz)> {
 }
 
 /// The steady-rolling solvers compared: Newton–Krylov with the upstream line preconditioner
-/// (the default), with the two-level preconditioner, with the Jacobi preconditioner (the
-/// default before), and the Gauss–Seidel reference.
+/// (the default until 2026-11-27), with the two-level preconditioner (the default), with the
+/// Jacobi preconditioner (the default before), and the Gauss–Seidel reference.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Solver {
     Nested,
@@ -136,7 +137,7 @@ fn xi_table() -> Result<()> {
         rayon::current_num_threads()
     );
     println!(
-        "(NK: Newton-Krylov with the upstream line preconditioner and the nested start from coarser grids, the default; NK-0: the same from zero tractions, the default before; NK-J: with the Jacobi preconditioner from zero; iterations = Newton steps; GS: Gauss-Seidel reference, iterations = sweeps; products = operator products on this grid, 4 FFT convolutions each; a warm start uses no coarse grid)"
+        "(NK: Newton-Krylov with the upstream line preconditioner and the nested start from coarser grids, the default (on this grid the two-level default is the line solve alone); NK-0: the same from zero tractions, the default before; NK-J: with the Jacobi preconditioner from zero; iterations = Newton steps; GS: Gauss-Seidel reference, iterations = sweeps; products = operator products on this grid, 4 FFT convolutions each; a warm start uses no coarse grid)"
     );
     println!(
         "{:>10} {:>7} {:>13} {:>6} {:>6} {:>6} {:>6} {:>9} {:>7} {:>10}",
@@ -186,7 +187,7 @@ fn grid_table() -> Result<()> {
     println!();
     println!("steady rolling, tractcurv, xi = 1e-3, cold start, against the grid size:");
     println!(
-        "(NK: nested start, the default; NK-2L: the same with the two-level preconditioner (issue #18; line solve alone below 6000 elements); NK-0: the same as NK from zero tractions, the default before; products on the fine grid; coarse: products on the coarser grids (elements: products); total: fine + coarse in fine-grid products, weighted by N log N)"
+        "(NK: nested start with the line solve, the default until 2026-11-27; NK-2L: the same with the two-level preconditioner, the default (issue #18; line solve alone below 6000 elements); NK-0: the same as NK from zero tractions, the default before; products on the fine grid; coarse: products on the coarser grids (elements: products); total: fine + coarse in fine-grid products, weighted by N log N)"
     );
     println!(
         "{:>9} {:>8} {:>7} {:>13} {:>6} {:>6} {:>6} {:>9} {:>7} {:>10} {:>10} {:>11}  coarse",

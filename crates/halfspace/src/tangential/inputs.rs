@@ -80,8 +80,8 @@ pub enum SteadySolver {
 pub enum NkPreconditioner {
     /// The diagonal blocks of the Jacobian and the coupling of each element to its upstream
     /// neighbour (one element towards the leading edge), solved exactly by marching each grid
-    /// row from the leading edge (the default).
-    #[default]
+    /// row from the leading edge (the default until 2026-11-27; on grids below 6000 elements
+    /// the default [`Self::TwoLevel`] is this).
     UpstreamLine,
     /// The diagonal of the Jacobian (the solver's preconditioner before the line solve; kept
     /// for comparison).
@@ -91,7 +91,9 @@ pub enum NkPreconditioner {
     /// products (near entries from the kernel table, far field by a point-force convolution on
     /// the grid of blocks) and solved by a few inner GMRES iterations; the outer iteration is
     /// flexible GMRES. Its product count stays bounded as the grid grows (docs/tangential.md
-    /// "Performance", issue #18).
+    /// "Performance", issue #18). The default; below 6000 elements, where the correction costs
+    /// more than it saves, it is the line solve alone.
+    #[default]
     TwoLevel,
 }
 
