@@ -55,6 +55,12 @@ const BASIS: usize = 3;
 /// law tests, measured up to 1.16 × the plain sum).
 const LEAVING_FACTOR: f64 = 2.0;
 
+/// A model that has convolved this many combinations Σ_k a_k y_k (evaluations that needed the
+/// entering check) convolves the three y_k once instead, and combines them for its later
+/// evaluations: a model that answers many evaluations (a wheel on a smooth span) pays three
+/// convolutions, one that is replaced at the next step one or two.
+const SHAPE_CONVOLUTIONS_AFTER: usize = 2;
+
 /// Relative residual of the CG solves of the responses y_k.
 const RESPONSE_TOL: f64 = 1e-5;
 
@@ -224,6 +230,10 @@ pub(super) struct FrozenSet {
     fitted: Option<[f64; BASIS]>,
     /// That displacement (`inactive` order).
     displaced: Vec<f64>,
+    /// Convolutions of combinations so far; from [`SHAPE_CONVOLUTIONS_AFTER`] on, A y_k
+    /// off C of every shape (`shape_u`), and U_k their exact maximum.
+    combinations: usize,
+    shape_u: Option<[Vec<f64>; BASIS]>,
     /// Y_k,i.
     column_response: [Vec<f64>; BASIS],
     /// Inverse of the X-weighted Gram matrix of the basis over the columns.
@@ -362,6 +372,8 @@ impl FrozenSet {
             factored,
             bound,
             fitted: None,
+            combinations: 0,
+            shape_u: None,
             column_response,
             gram_inverse,
             nx,
@@ -466,7 +478,9 @@ impl FrozenSet {
     }
 
     /// The predicted displacement Σ_k a_k (A y_k) off C of the fit `a` into `displaced`, by
-    /// one convolution of Σ_k a_k y_k (none when it is there already).
+    /// one convolution of Σ_k a_k y_k (none when it is there already), or, from the
+    /// [`SHAPE_CONVOLUTIONS_AFTER`]-th on, from A y_k of every shape (three convolutions once;
+    /// U_k is then their exact maximum).
     fn displace(
         &mut self,
         solver: &mut NormalSolver,
@@ -477,14 +491,39 @@ impl FrozenSet {
             return Ok(());
         }
         self.fitted = None;
-        let combination = &mut responses.combination;
-        combination.fill(0.0);
-        for (c, &e) in self.active.iter().enumerate() {
-            combination[e] = (0..BASIS).map(|k| a[k] * self.y[k][c]).sum();
+        if self.shape_u.is_none() && self.combinations >= SHAPE_CONVOLUTIONS_AFTER {
+            let mut shape_u: [Vec<f64>; BASIS] = std::array::from_fn(|_| Vec::new());
+            for (k, u) in shape_u.iter_mut().enumerate() {
+                let y = &mut responses.combination;
+                y.fill(0.0);
+                for (&e, &v) in self.active.iter().zip(&self.y[k]) {
+                    y[e] = v;
+                }
+                solver.displacement(y, &mut responses.scratch)?;
+                *u = self
+                    .inactive
+                    .iter()
+                    .map(|&e| responses.scratch[e as usize])
+                    .collect();
+                self.bound[k] = u.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+            }
+            self.shape_u = Some(shape_u);
         }
-        solver.displacement(combination, &mut responses.scratch)?;
-        for (u, &e) in self.displaced.iter_mut().zip(&self.inactive) {
-            *u = responses.scratch[e as usize];
+        if let Some(shape_u) = &self.shape_u {
+            for (j, u) in self.displaced.iter_mut().enumerate() {
+                *u = (0..BASIS).map(|k| a[k] * shape_u[k][j]).sum();
+            }
+        } else {
+            let combination = &mut responses.combination;
+            combination.fill(0.0);
+            for (c, &e) in self.active.iter().enumerate() {
+                combination[e] = (0..BASIS).map(|k| a[k] * self.y[k][c]).sum();
+            }
+            solver.displacement(combination, &mut responses.scratch)?;
+            for (u, &e) in self.displaced.iter_mut().zip(&self.inactive) {
+                *u = responses.scratch[e as usize];
+            }
+            self.combinations += 1;
         }
         self.fitted = Some(*a);
         Ok(())
