@@ -383,9 +383,10 @@ impl BemLaw {
         let tol = self.options.reuse_tol;
         let reuse = self.reuse.as_mut()?;
         reuse.stats.last_estimate = 0.0;
-        let model = reuse.model.as_ref()?;
+        let model = reuse.model.as_mut()?;
         let prediction = model.predict(
-            &reuse.responses,
+            &mut self.solver,
+            &mut reuse.responses,
             delta,
             column_gap,
             &mut self.column_force,
@@ -417,14 +418,21 @@ impl BemLaw {
         let Some(reuse) = self.reuse.as_mut() else {
             return Ok(None);
         };
-        let Some(model) = reuse.model.as_ref().filter(|m| m.factored()) else {
+        let Some(model) = reuse.model.as_mut().filter(|m| m.factored()) else {
             return Ok(None);
         };
         let delta_g = &mut reuse.delta_g;
         let responses = &mut reuse.responses;
         // The model's guess needs the responses read-only; it fills the flags first.
         let mut guess = std::mem::take(&mut reuse.guess);
-        model.predicted_set(responses, delta, column_gap, delta_g, &mut guess);
+        model.predicted_set(
+            &mut self.solver,
+            responses,
+            delta,
+            column_gap,
+            delta_g,
+            &mut guess,
+        )?;
         let solution = responses.solve_set(&mut self.solver, &self.gap, delta, |set| {
             std::mem::swap(set, &mut guess)
         })?;

@@ -30,7 +30,14 @@
 //! * τ Σ_i |X_i Δg_i|, the force change times the relative CG tolerance τ of the responses.
 //!
 //! An element outside C that the prediction makes penetrate (it would enter the set) refuses
-//! the prediction: its force is not bounded by quantities the model holds.
+//! the prediction: its force is not bounded by quantities the model holds. The check needs
+//! the predicted displacement Σ_k a_k (A y_k)_j off C, one convolution of Σ_k a_k y_k for the
+//! evaluation's fit a (kept for the model's guess of the next set at the same fit), unless no
+//! element can penetrate: its distance is at least the least one, min_j e_r,j, and its gap
+//! change is at most max_i |Δg_i| + Σ_k |a_k| U_k with U_k = K₁ Σ_C |y_k,e| ≥ |(A y_k)_j|
+//! (K₁ the largest kernel entry off the diagonal: an element off C is at a non-zero offset
+//! from every element of C), so when that sum is below the least distance the evaluation
+//! needs no convolution (references.md §C8.4, "Displacements off the set").
 
 use crate::error::ContactError;
 use crate::grid::Grid;
@@ -48,9 +55,11 @@ const BASIS: usize = 3;
 /// law tests, measured up to 1.16 × the plain sum).
 const LEAVING_FACTOR: f64 = 2.0;
 
-/// Elements off the contact set kept in order of distance ([`FrozenSet::build`]); the
-/// others are visited only when a gap change reaches them.
-const NEAREST: usize = 64;
+/// A model that has convolved this many combinations Σ_k a_k y_k (evaluations that needed the
+/// entering check) convolves the three y_k once instead, and combines them for its later
+/// evaluations: a model that answers many evaluations (a wheel on a smooth span) pays three
+/// convolutions, one that is replaced at the next step one or two.
+const SHAPE_CONVOLUTIONS_AFTER: usize = 2;
 
 /// Relative residual of the CG solves of the responses y_k.
 const RESPONSE_TOL: f64 = 1e-5;
@@ -77,8 +86,10 @@ pub(super) struct Responses {
     column_shapes: [Vec<f64>; BASIS],
     /// y_k per element (zero outside the last contact set).
     y: [Vec<f64>; BASIS],
-    /// Scratch for A y_k.
+    /// Scratch for A y_k, and for Σ_k a_k A y_k.
     scratch: Vec<f64>,
+    /// Scratch for Σ_k a_k y_k (zero off the set).
+    combination: Vec<f64>,
     /// The self-influence A_ee \[m/Pa\] (equal for every element of a uniform grid).
     self_influence: f64,
     /// The dense factor of A_CC kept across set changes (grids up to [`MAX_FACTOR_GRID`]).
@@ -128,6 +139,7 @@ impl Responses {
             column_shapes,
             y: std::array::from_fn(|_| vec![0.0; n]),
             scratch: u.clone(),
+            combination: vec![0.0; n],
             self_influence: u[centre],
             factor,
             set_block: Vec::new(),
@@ -201,22 +213,27 @@ pub(super) struct FrozenSet {
     pressure: Vec<f64>,
     /// y_k on C (`active` order).
     y: [Vec<f64>; BASIS],
-    /// The elements off C, by increasing deformed distance.
+    /// The elements off C (with a finite deformed distance).
     inactive: Vec<u32>,
     /// Their grid columns.
     inactive_column: Vec<u32>,
-    /// The first `sorted` of them are the nearest, by increasing distance; the others, in
-    /// no order, are at least `rest_min` away.
-    sorted: usize,
-    rest_min: f64,
+    /// The least of their deformed distances.
+    nearest: f64,
     /// Whether the responses came from the dense factor (which then holds A_CC of C).
     factored: bool,
     /// Their deformed distances e_r.
     distance: Vec<f64>,
-    /// A y_k off C (`inactive` order).
-    response_u: [Vec<f64>; BASIS],
-    /// max_j |(A y_k)_j| off C.
-    response_u_max: [f64; BASIS],
+    /// U_k ≥ max_j |(A y_k)_j| off C (module documentation; infinite without the factor's
+    /// kernel table).
+    bound: [f64; BASIS],
+    /// The fit a whose predicted displacement Σ_k a_k (A y_k) off C is in `displaced`.
+    fitted: Option<[f64; BASIS]>,
+    /// That displacement (`inactive` order).
+    displaced: Vec<f64>,
+    /// Convolutions of combinations so far; from [`SHAPE_CONVOLUTIONS_AFTER`] on, A y_k
+    /// off C of every shape (`shape_u`), and U_k their exact maximum.
+    combinations: usize,
+    shape_u: Option<[Vec<f64>; BASIS]>,
     /// Y_k,i.
     column_response: [Vec<f64>; BASIS],
     /// Inverse of the X-weighted Gram matrix of the basis over the columns.
@@ -263,29 +280,14 @@ impl FrozenSet {
         let area = grid.element_area();
         let in_contact = &solution.in_contact;
         let mut column_response: [Vec<f64>; BASIS] = std::array::from_fn(|_| vec![0.0; nx]);
-        let mut response_u: [Vec<f64>; BASIS] = std::array::from_fn(|_| Vec::new());
         let active: Vec<usize> = (0..n).filter(|&e| in_contact[e]).collect();
-        // Off C, the [`NEAREST`] nearest first by increasing distance, then the others (all
-        // at least as far) unordered: an evaluation's entering check stops at the first
-        // element whose distance exceeds the largest possible gap change (`predict`), and
-        // visits the others only when that change reaches them.
-        let mut inactive: Vec<usize> = (0..n)
+        let inactive: Vec<usize> = (0..n)
             .filter(|&e| !in_contact[e] && solution.deformed_distance[e].is_finite())
             .collect();
-        // A total order (ties by element), so the order does not depend on the algorithm.
-        let by_distance = |a: &usize, b: &usize| {
-            solution.deformed_distance[*a]
-                .total_cmp(&solution.deformed_distance[*b])
-                .then(a.cmp(b))
-        };
-        let sorted = NEAREST.min(inactive.len());
-        if sorted < inactive.len() {
-            inactive.select_nth_unstable_by(sorted, by_distance);
-        }
-        inactive[..sorted].sort_unstable_by(by_distance);
-        let rest_min = inactive
-            .get(sorted)
-            .map_or(f64::INFINITY, |&e| solution.deformed_distance[e]);
+        let nearest = inactive
+            .iter()
+            .map(|&e| solution.deformed_distance[e])
+            .fold(f64::INFINITY, f64::min);
         let factored = match responses.factor.as_mut() {
             Some(factor) if active.len() <= MAX_FACTOR_SET => {
                 factor.sync(in_contact)?;
@@ -297,9 +299,7 @@ impl FrozenSet {
             responses.solve_by_factor();
         }
         for k in 0..BASIS {
-            if factored {
-                solver.displacement(&responses.y[k], &mut responses.scratch)?;
-            } else {
+            if !factored {
                 solver.solve_on_set(
                     in_contact,
                     &responses.shapes[k],
@@ -309,7 +309,6 @@ impl FrozenSet {
                     max_iter,
                 )?;
             }
-            response_u[k] = inactive.iter().map(|&e| responses.scratch[e]).collect();
             for &e in &active {
                 column_response[k][e % nx] += area * responses.y[k][e];
             }
@@ -324,8 +323,16 @@ impl FrozenSet {
                 }
             }
         }
-        let response_u_max =
-            std::array::from_fn(|k| response_u[k].iter().fold(0.0_f64, |m, u| m.max(u.abs())));
+        // K₁, the largest kernel entry off the diagonal (module documentation).
+        let off_diagonal = match responses.factor.as_ref() {
+            Some(factor) if factored => factor.kernel()[1..]
+                .iter()
+                .fold(0.0_f64, |m, v| m.max(v.abs())),
+            _ => f64::INFINITY,
+        };
+        let bound = std::array::from_fn(|k| {
+            off_diagonal * active.iter().map(|&e| responses.y[k][e].abs()).sum::<f64>()
+        });
         let Some(gram_inverse) = invert3(&gram) else {
             // Fewer than three columns in contact: no model (every evaluation solves).
             return Ok(None);
@@ -359,12 +366,14 @@ impl FrozenSet {
                 .map(|&e| solution.deformed_distance[e])
                 .collect(),
             inactive_column: inactive.iter().map(|&e| (e % nx) as u32).collect(),
-            sorted,
-            rest_min,
+            nearest,
+            displaced: vec![0.0; inactive.len()],
             inactive: inactive.iter().map(|&e| e as u32).collect(),
             factored,
-            response_u,
-            response_u_max,
+            bound,
+            fitted: None,
+            combinations: 0,
+            shape_u: None,
             column_response,
             gram_inverse,
             nx,
@@ -389,10 +398,12 @@ impl FrozenSet {
 
     /// The prediction at approach `delta` with the column corrections `column_gap`, writing
     /// the column forces to `column_force` (when not empty) and the pressure to `pressure`;
-    /// `None` when an element outside the set would penetrate.
+    /// `None` when an element outside the set would penetrate (or the convolution of that
+    /// check fails: the full solve then reports the error).
     pub(super) fn predict(
-        &self,
-        responses: &Responses,
+        &mut self,
+        solver: &mut NormalSolver,
+        responses: &mut Responses,
         delta: f64,
         column_gap: &[f64],
         column_force: &mut [f64],
@@ -401,32 +412,12 @@ impl FrozenSet {
     ) -> Option<Prediction> {
         let nx = self.nx;
         let a = self.fit(responses, delta, column_gap, delta_g);
-        // Entering elements refuse the prediction. The predicted distance of an element off
-        // C is e_r − Δg_i + Σ_k a_k (A y_k)_e ≥ e_r − max_i |Δg_i| − Σ_k |a_k| max |A y_k|:
-        // only the elements with e_r within that bound can penetrate (the same answer as
-        // checking every element). The nearest are sorted by e_r, so their check stops at
-        // the first one beyond it; the others are visited only when it reaches them.
-        let reach = delta_g.iter().fold(0.0_f64, |m, g| m.max(g.abs()))
-            + (0..BASIS)
-                .map(|k| a[k].abs() * self.response_u_max[k])
-                .sum::<f64>();
-        let penetrates = |j: usize| {
-            let mut predicted = self.distance[j] - delta_g[self.inactive_column[j] as usize];
-            for (k, ak) in a.iter().enumerate() {
-                predicted += ak * self.response_u[k][j];
+        // Entering elements refuse the prediction (module documentation).
+        if self.may_enter(&a, delta_g) {
+            self.displace(solver, responses, &a).ok()?;
+            if (0..self.distance.len()).any(|j| self.penetrates(j, delta_g)) {
+                return None;
             }
-            predicted < 0.0
-        };
-        let nearest = &self.distance[..self.sorted];
-        let within = nearest.partition_point(|&d| d <= reach);
-        if (0..within).any(penetrates) {
-            return None;
-        }
-        if reach >= self.rest_min
-            && (self.sorted..self.distance.len())
-                .any(|j| self.distance[j] <= reach && penetrates(j))
-        {
-            return None;
         }
         // Column forces, force, energy and the remainder term.
         let (mut force, mut energy, mut stiffness, mut remainder) = (0.0, self.energy, 0.0, 0.0);
@@ -477,6 +468,73 @@ impl FrozenSet {
         })
     }
 
+    /// Whether an element off C may penetrate under the fit `a` and the column changes
+    /// `delta_g`: its gap change max_i |Δg_i| + Σ_k |a_k| U_k reaches the least distance
+    /// (module documentation). A NaN answers yes.
+    fn may_enter(&self, a: &[f64; BASIS], delta_g: &[f64]) -> bool {
+        let reach = delta_g.iter().fold(0.0_f64, |m, g| m.max(g.abs()))
+            + (0..BASIS).map(|k| a[k].abs() * self.bound[k]).sum::<f64>();
+        reach.is_nan() || reach >= self.nearest
+    }
+
+    /// The predicted displacement Σ_k a_k (A y_k) off C of the fit `a` into `displaced`, by
+    /// one convolution of Σ_k a_k y_k (none when it is there already), or, from the
+    /// [`SHAPE_CONVOLUTIONS_AFTER`]-th on, from A y_k of every shape (three convolutions once;
+    /// U_k is then their exact maximum).
+    fn displace(
+        &mut self,
+        solver: &mut NormalSolver,
+        responses: &mut Responses,
+        a: &[f64; BASIS],
+    ) -> Result<(), ContactError> {
+        if self.fitted == Some(*a) {
+            return Ok(());
+        }
+        self.fitted = None;
+        if self.shape_u.is_none() && self.combinations >= SHAPE_CONVOLUTIONS_AFTER {
+            let mut shape_u: [Vec<f64>; BASIS] = std::array::from_fn(|_| Vec::new());
+            for (k, u) in shape_u.iter_mut().enumerate() {
+                let y = &mut responses.combination;
+                y.fill(0.0);
+                for (&e, &v) in self.active.iter().zip(&self.y[k]) {
+                    y[e] = v;
+                }
+                solver.displacement(y, &mut responses.scratch)?;
+                *u = self
+                    .inactive
+                    .iter()
+                    .map(|&e| responses.scratch[e as usize])
+                    .collect();
+                self.bound[k] = u.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+            }
+            self.shape_u = Some(shape_u);
+        }
+        if let Some(shape_u) = &self.shape_u {
+            for (j, u) in self.displaced.iter_mut().enumerate() {
+                *u = (0..BASIS).map(|k| a[k] * shape_u[k][j]).sum();
+            }
+        } else {
+            let combination = &mut responses.combination;
+            combination.fill(0.0);
+            for (c, &e) in self.active.iter().enumerate() {
+                combination[e] = (0..BASIS).map(|k| a[k] * self.y[k][c]).sum();
+            }
+            solver.displacement(combination, &mut responses.scratch)?;
+            for (u, &e) in self.displaced.iter_mut().zip(&self.inactive) {
+                *u = responses.scratch[e as usize];
+            }
+            self.combinations += 1;
+        }
+        self.fitted = Some(*a);
+        Ok(())
+    }
+
+    /// Whether the `j`-th element off C penetrates under the displacement in `displaced`
+    /// and the column changes `delta_g`: e_r − Δg_i + Σ_k a_k (A y_k)_j < 0.
+    fn penetrates(&self, j: usize, delta_g: &[f64]) -> bool {
+        self.distance[j] - delta_g[self.inactive_column[j] as usize] + self.displaced[j] < 0.0
+    }
+
     /// Δg_i per column into `delta_g` and its X-weighted least-squares fit a_k on the basis.
     fn fit(
         &self,
@@ -507,13 +565,14 @@ impl FrozenSet {
     /// distance e_r − Δg_i + Σ a_k (A y_k) is negative (the part of Δg outside the basis is
     /// left out: a guess, the start of the factor's active-set solve).
     pub(super) fn predicted_set(
-        &self,
-        responses: &Responses,
+        &mut self,
+        solver: &mut NormalSolver,
+        responses: &mut Responses,
         delta: f64,
         column_gap: &[f64],
         delta_g: &mut Vec<f64>,
         in_contact: &mut Vec<bool>,
-    ) {
+    ) -> Result<(), ContactError> {
         let a = self.fit(responses, delta, column_gap, delta_g);
         in_contact.clear();
         in_contact.resize(responses.shapes[0].len(), false);
@@ -521,15 +580,15 @@ impl FrozenSet {
             let p: f64 = self.pressure[j] + (0..BASIS).map(|k| a[k] * self.y[k][j]).sum::<f64>();
             in_contact[e] = p >= 0.0;
         }
-        for (j, &d) in self.distance.iter().enumerate() {
-            let mut predicted = d - delta_g[self.inactive_column[j] as usize];
-            for (k, ak) in a.iter().enumerate() {
-                predicted += ak * self.response_u[k][j];
-            }
-            if predicted < 0.0 {
-                in_contact[self.inactive[j] as usize] = true;
+        if self.may_enter(&a, delta_g) {
+            self.displace(solver, responses, &a)?;
+            for j in 0..self.distance.len() {
+                if self.penetrates(j, delta_g) {
+                    in_contact[self.inactive[j] as usize] = true;
+                }
             }
         }
+        Ok(())
     }
 
     /// dF/dδ of the frozen set, Σ_i X_i \[N/m\].
@@ -564,107 +623,4 @@ fn invert3(m: &[[f64; 3]; 3]) -> Option<[[f64; 3]; 3]> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::{BASIS, FrozenSet, NEAREST, Responses, invert3};
-    use crate::grid::Grid;
-    use crate::material::Material;
-    use crate::normcg::{NormalLoad, NormalSolver, SolverOptions};
-
-    /// The entering check of `predict` (the [`NEAREST`] nearest elements off the set in
-    /// order, the others unordered) refuses exactly when visiting every element off the set
-    /// finds one whose predicted distance e_r − Δg_i + Σ_k a_k (A y_k)_e is negative (the
-    /// independent reference: no ordering, no reach bound). A wheel-on-rail gap on a 24 × 24
-    /// grid (about 140 elements in contact, 430 off), approach changes of −3 … +5 % and tilts
-    /// and curvatures of the column corrections up to 3e-6 m: both outcomes occur, and
-    /// changes that reach beyond the sorted elements too.
-    #[test]
-    fn entering_check_equals_visiting_every_element() {
-        let grid = Grid::centred(24, 24, 5e-4, 4e-4, 0.0, 0.0).unwrap();
-        let material = Material::identical(210e9, 0.3).unwrap();
-        let gap = grid.sample(|x, y| x * x / 0.92 + y * y / 0.6);
-        let mut solver = NormalSolver::new(grid, material).unwrap();
-        let options = SolverOptions {
-            tol: 1e-12,
-            max_iter: 2000,
-            ..SolverOptions::default()
-        };
-        let delta = 3e-5;
-        let solution = solver
-            .solve(&gap, NormalLoad::Approach(delta), &options)
-            .unwrap();
-        let mut responses = Responses::new(&grid, &mut solver).unwrap();
-        let column_force = vec![0.0; grid.nx];
-        let model = FrozenSet::build(
-            &mut solver,
-            &mut responses,
-            &solution,
-            delta,
-            &[],
-            &column_force,
-            0.0,
-            2000,
-        )
-        .unwrap()
-        .expect("a model");
-        assert!(model.distance.len() > NEAREST);
-        let (mut refused, mut accepted, mut far) = (0, 0, 0);
-        let (mut out, mut pressure, mut delta_g) =
-            (vec![0.0; grid.nx], vec![0.0; grid.len()], Vec::new());
-        for step in 0..400 {
-            let f = step as f64;
-            let d = delta * (1.0 + 0.08 * ((0.37 * f).sin() * 0.5 + 0.125));
-            let (tilt, bend) = (3e-6 * (0.71 * f).sin(), 3e-6 * (1.13 * f).cos());
-            let column_gap: Vec<f64> = (0..grid.nx)
-                .map(|i| {
-                    let xi = (i as f64 + 0.5) / grid.nx as f64 * 2.0 - 1.0;
-                    tilt * xi + bend * xi * xi
-                })
-                .collect();
-            let predicted = model.predict(
-                &responses,
-                d,
-                &column_gap,
-                &mut out,
-                &mut pressure,
-                &mut delta_g,
-            );
-            let a = model.fit(&responses, d, &column_gap, &mut delta_g);
-            let every = (0..model.distance.len()).any(|j| {
-                let mut e = model.distance[j] - delta_g[model.inactive_column[j] as usize];
-                for (k, ak) in a.iter().enumerate().take(BASIS) {
-                    e += ak * model.response_u[k][j];
-                }
-                e < 0.0
-            });
-            assert_eq!(predicted.is_none(), every, "step {step}");
-            let reach = delta_g.iter().fold(0.0_f64, |m, g| m.max(g.abs()))
-                + (0..BASIS)
-                    .map(|k| a[k].abs() * model.response_u_max[k])
-                    .sum::<f64>();
-            far += usize::from(reach >= model.rest_min);
-            if every {
-                refused += 1;
-            } else {
-                accepted += 1;
-            }
-        }
-        assert!(
-            refused > 20 && accepted > 20 && far > 20,
-            "{refused} {accepted} {far}"
-        );
-    }
-
-    /// The cofactor inverse times the matrix is the identity (1e-12, round-off).
-    #[test]
-    fn inverse_of_a_gram_matrix() {
-        let m = [[4.0, 1.0, 0.5], [1.0, 3.0, 0.25], [0.5, 0.25, 2.0]];
-        let inv = invert3(&m).unwrap();
-        for r in 0..3 {
-            for c in 0..3 {
-                let v: f64 = (0..3).map(|k| m[r][k] * inv[k][c]).sum();
-                assert!((v - f64::from(u8::from(r == c))).abs() < 1e-12);
-            }
-        }
-        assert!(invert3(&[[1.0, 1.0, 0.0], [1.0, 1.0, 0.0], [0.0, 0.0, 1.0]]).is_none());
-    }
-}
+mod tests;

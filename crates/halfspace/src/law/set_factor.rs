@@ -31,6 +31,9 @@ pub(super) struct SetFactor {
     nx: usize,
     /// The element of each row of the factor.
     members: Vec<usize>,
+    /// Its grid cell (column, row), kept beside `members` so that the influence row of an
+    /// appended element needs no integer divisions.
+    cells: Vec<(u32, u32)>,
     /// The row of each element ([`OUTSIDE`] when not in the set).
     position: Vec<usize>,
     l: Vec<f64>,
@@ -52,6 +55,7 @@ impl SetFactor {
             kernel,
             nx,
             members: Vec::new(),
+            cells: Vec::new(),
             position: vec![OUTSIDE; n],
             l: Vec::new(),
             stride: 0,
@@ -61,16 +65,19 @@ impl SetFactor {
         }
     }
 
+    /// The kernel table K(dx, dy) at `dy * nx + dx` \[m/Pa\].
+    pub(super) fn kernel(&self) -> &[f64] {
+        &self.kernel
+    }
+
     /// The elements of the set in the order of the factor's rows.
     pub(super) fn members(&self) -> &[usize] {
         &self.members
     }
 
-    /// A_ef.
-    fn influence(&self, e: usize, f: usize) -> f64 {
-        let nx = self.nx;
-        let (dx, dy) = ((e % nx).abs_diff(f % nx), (e / nx).abs_diff(f / nx));
-        self.kernel[dy * nx + dx]
+    /// The grid cell (column, row) of element `e`.
+    fn cell(&self, e: usize) -> (u32, u32) {
+        ((e % self.nx) as u32, (e / self.nx) as u32)
     }
 
     /// Makes the set equal to `{e : in_contact[e]}`: deletes the elements that left (the
@@ -89,6 +96,7 @@ impl SetFactor {
                 self.position[e] = OUTSIDE;
             }
             self.members.clear();
+            self.cells.clear();
         } else {
             for &k in &leaving {
                 self.delete(k);
@@ -150,7 +158,14 @@ impl SetFactor {
         let s = self.stride;
         let mut a = std::mem::take(&mut self.work);
         a.clear();
-        a.extend(self.members.iter().map(|&f| self.influence(f, e)));
+        // A_fe = K(|ix_f − ix_e|, |iy_f − iy_e|) for every member f.
+        let (ex, ey) = self.cell(e);
+        let (kernel, nx) = (&self.kernel, self.nx);
+        a.extend(
+            self.cells
+                .iter()
+                .map(|&(fx, fy)| kernel[fy.abs_diff(ey) as usize * nx + fx.abs_diff(ex) as usize]),
+        );
         // Forward substitution L l = a (l overwrites a).
         substitute_fast(&self.l, s, m, &mut a[..], false);
         let diag = self.kernel[0];
@@ -171,6 +186,7 @@ impl SetFactor {
         self.work = a;
         self.position[e] = m;
         self.members.push(e);
+        self.cells.push((ex, ey));
         Ok(())
     }
 
@@ -192,6 +208,7 @@ impl SetFactor {
                 .copy_within(j * s + j..j * s + m, (j - 1) * s + j - 1);
         }
         let e = self.members.remove(k);
+        self.cells.remove(k);
         self.position[e] = OUTSIDE;
         for &f in &self.members[k..] {
             self.position[f] -= 1;
@@ -207,20 +224,24 @@ impl SetFactor {
     }
 }
 
-/// Runs `$body` (a block using the listed arguments) through a copy compiled with AVX when
-/// the processor has it: the same operations in the same order as without (no fused
-/// multiply-add), so the results are identical bit for bit. The body must be a plain
-/// function call chain (closures would not inherit the target feature).
+/// Runs `$body` (a block using the listed arguments) through a copy compiled with AVX and FMA
+/// when the processor has both: the same operations in the same order as without. The
+/// multiply-adds of [`Row`] are fused (`f64::mul_add`, one rounding), in hardware here and
+/// by the exactly rounded software `fma` of the plain build, so the results are identical
+/// bit for bit, only slower without FMA. The body must be a plain function call chain
+/// (closures would not inherit the target features).
 macro_rules! avx_dispatch {
     ($(#[$doc:meta])* fn $name:ident $(<$g:ident: $b:path>)?($($arg:ident: $ty:ty),*) $body:block) => {
         $(#[$doc])*
         fn $name $(<$g: $b>)?($($arg: $ty),*) {
             #[cfg(target_arch = "x86_64")]
             {
-                #[target_feature(enable = "avx")]
+                #[target_feature(enable = "avx,fma")]
                 fn avx $(<$g: $b>)?($($arg: $ty),*) $body
-                if std::arch::is_x86_feature_detected!("avx") {
-                    // SAFETY: AVX is present (checked at run time just above).
+                if std::arch::is_x86_feature_detected!("avx")
+                    && std::arch::is_x86_feature_detected!("fma")
+                {
+                    // SAFETY: AVX and FMA are present (checked at run time just above).
                     unsafe { avx($($arg),*) };
                     return;
                 }
@@ -231,7 +252,7 @@ macro_rules! avx_dispatch {
 }
 
 avx_dispatch! {
-    /// [`substitute`], with AVX when the processor has it.
+    /// [`substitute`], with AVX and FMA when the processor has them.
     fn substitute_fast<T: Row>(l: &[f64], s: usize, m: usize, y: &mut [T], backward: bool) {
         substitute(l, s, m, y, backward)
     }
@@ -240,7 +261,7 @@ avx_dispatch! {
 avx_dispatch! {
     /// The Givens rotations of a deletion (row and column `k` of a factor of order `m`,
     /// [`SetFactor::delete`]): L₃₃ L₃₃ᵀ + x xᵀ with x = l₃₂ (overwritten), with AVX when the
-    /// processor has it.
+    /// processor has it (and FMA; the rotations use no fused multiply-add).
     fn rotate_fast(l: &mut [f64], s: usize, k: usize, m: usize, x: &mut [f64]) {
         for j in k + 1..m {
             let xj = x[j - k - 1];
@@ -312,9 +333,9 @@ pub(super) trait Row: Copy {
     fn scale(self, by: f64) -> Self;
     /// self − other.
     fn minus(self, other: Self) -> Self;
-    /// self −= l y.
+    /// self −= l y, fused (one rounding: `f64::mul_add`).
     fn sub_scaled(&mut self, l: f64, y: Self);
-    /// Σ_i l_i y_i.
+    /// Σ_i l_i y_i, by fused multiply-adds.
     fn dot(l: &[f64], y: &[Self]) -> Self;
 }
 
@@ -329,22 +350,21 @@ impl Row for f64 {
     }
     #[inline(always)]
     fn sub_scaled(&mut self, l: f64, y: Self) {
-        *self -= l * y;
+        *self = (-l).mul_add(y, *self);
     }
     /// With four partial sums (vectorisable; a fixed order).
     #[inline(always)]
     fn dot(a: &[f64], b: &[f64]) -> f64 {
         let mut acc = [0.0; 4];
         let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
-        let tail: f64 = ca
+        let tail = ca
             .remainder()
             .iter()
             .zip(cb.remainder())
-            .map(|(x, y)| x * y)
-            .sum();
+            .fold(0.0, |t, (x, y)| x.mul_add(*y, t));
         for (x, y) in ca.zip(cb) {
             for r in 0..4 {
-                acc[r] += x[r] * y[r];
+                acc[r] = x[r].mul_add(y[r], acc[r]);
             }
         }
         (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
@@ -369,7 +389,7 @@ impl<const K: usize> Row for [f64; K] {
     #[inline(always)]
     fn sub_scaled(&mut self, l: f64, y: Self) {
         for r in 0..K {
-            self[r] -= l * y[r];
+            self[r] = (-l).mul_add(y[r], self[r]);
         }
     }
     /// With four partial sums per lane (four independent chains of additions, so the loop
@@ -381,13 +401,13 @@ impl<const K: usize> Row for [f64; K] {
         let mut tail = [0.0; K];
         for (li, yi) in cl.remainder().iter().zip(cy.remainder()) {
             for r in 0..K {
-                tail[r] += li * yi[r];
+                tail[r] = li.mul_add(yi[r], tail[r]);
             }
         }
         for (l4, y4) in cl.zip(cy) {
             for (a, (li, yi)) in acc.iter_mut().zip(l4.iter().zip(y4)) {
                 for r in 0..K {
-                    a[r] += li * yi[r];
+                    a[r] = li.mul_add(yi[r], a[r]);
                 }
             }
         }
