@@ -291,6 +291,24 @@ fn bytes_text(bytes: f64) -> String {
     }
 }
 
+/// Largest number of response points of `[output] points` (every scenario kind).
+pub const MAX_POINTS: usize = 1000;
+
+/// `output.points`: between `min` and [`MAX_POINTS`] positions, each on the span [0, `length`]
+/// (the error names the point's index, its value and the range).
+pub fn points_on_span(points: &[f64], min: usize, length: f64) -> Result<Vec<f64>, ConfigError> {
+    count("output.points", points.len(), min, MAX_POINTS)?;
+    for (i, &x) in points.iter().enumerate() {
+        if !(x.is_finite() && (0.0..=length).contains(&x)) {
+            return Err(ConfigError::Invalid(format!(
+                "`output.points[{i}]` = {}: must lie on the span [0, {length}] m",
+                number(x)
+            )));
+        }
+    }
+    Ok(points.to_vec())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

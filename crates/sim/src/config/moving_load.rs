@@ -206,14 +206,8 @@ pub fn build(file: MovingLoadFile) -> Result<MovingLoadConfig, ConfigError> {
     if output.and_then(|o| o.points.as_ref()).is_none() {
         points.extend(bridge.other_span_midpoints(points[0]));
     }
-    if let Some(extra) = output.and_then(|o| o.points.clone()) {
-        if let Some(x) = extra
-            .iter()
-            .find(|x| !(x.is_finite() && (0.0..=length).contains(*x)))
-        {
-            bail!("[output] `points` contains {x}: points must lie on the span [0, {length}]");
-        }
-        checks::count("output.points", extra.len(), 0, 1000)?;
+    if let Some(extra) = output.and_then(|o| o.points.as_deref()) {
+        let extra = checks::points_on_span(extra, 0, length)?;
         points.extend(extra);
     }
     let total_steps = ((loads.exit_time(length) + free) / dt).ceil().max(1.0);

@@ -227,18 +227,7 @@ pub fn build(file: SweepFile, base: &std::path::Path) -> Result<SweepConfig, Con
     let points = match file.output.as_ref().and_then(|o| o.points.clone()) {
         // Issue #12: the midspan of each span (an FE bridge's spans between its supports).
         None => bridge.span_midpoints(),
-        Some(p) => {
-            checks::count("output.points", p.len(), 1, 1000)?;
-            if let Some(x) = p
-                .iter()
-                .find(|x| !(x.is_finite() && (0.0..=length).contains(*x)))
-            {
-                bail!(
-                    "[output] `points` contains {x}: points must lie on the span [0, {length}] m"
-                );
-            }
-            p
-        }
+        Some(p) => checks::points_on_span(&p, 1, length)?,
     };
     let track = match file.check.as_ref().and_then(|c| c.track.as_deref()) {
         None => Track::Ballasted,

@@ -30,8 +30,8 @@ use crate::vehicle_bridge::{
 use crate::vehicle_bridge_series::SeriesLayout;
 
 mod series;
+use series::check_run_length;
 pub use series::{DEFAULT_SERIES_VALUES, default_every};
-use series::{check_run_length, response_points};
 
 /// Default structural method.
 pub const DEFAULT_METHOD: &str = "newmark";
@@ -437,7 +437,7 @@ pub fn build_in(file: VehicleBridgeFile, base: &Path) -> Result<VehicleBridgeCon
     }
     // Without `points`, a continuous bridge reports the midspan of every other span too.
     let points = match out.and_then(|o| o.points.as_deref()) {
-        Some(p) => response_points(p, length)?,
+        Some(p) => checks::points_on_span(p, 0, length)?,
         None => default_points,
     };
     let layout = SeriesLayout {

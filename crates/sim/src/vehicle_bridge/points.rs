@@ -8,8 +8,8 @@ use beam::Derivative;
 use super::error::invalid;
 use super::{Simulation, VehicleBridgeError};
 
-/// Largest number of response points.
-pub const MAX_POINTS: usize = 1000;
+/// Largest number of response points (as the scenario files allow).
+pub const MAX_POINTS: usize = crate::config::checks::MAX_POINTS;
 
 /// The response points and their mode shapes (point i's m shapes at `shapes[i m..(i + 1) m]`).
 #[derive(Debug, Default, Clone)]

@@ -76,22 +76,3 @@ pub(super) fn check_run_length(
     }
     Ok(())
 }
-
-/// `output.points`: at most [`crate::vehicle_bridge::points::MAX_POINTS`], each on the span.
-pub(super) fn response_points(points: &[f64], length: f64) -> Result<Vec<f64>, ConfigError> {
-    checks::count(
-        "output.points",
-        points.len(),
-        0,
-        crate::vehicle_bridge::points::MAX_POINTS,
-    )?;
-    for (i, &x) in points.iter().enumerate() {
-        if !(x.is_finite() && (0.0..=length).contains(&x)) {
-            bail!(
-                "`output.points[{i}]` = {}: must lie on the span [0, {length}] m",
-                checks::number(x)
-            );
-        }
-    }
-    Ok(points.to_vec())
-}
