@@ -101,9 +101,17 @@ pub fn solve_normal<'py>(
     force: Option<f64>,
     approach: Option<f64>,
     tol: Option<f64>,
-    max_iter: Option<usize>,
+    max_iter: Option<i64>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (ny, nx) = (gap.shape()[0], gap.shape()[1]);
+    // Signed here so that a negative count gets the key's own message, not pyo3's overflow.
+    let max_iter = match max_iter {
+        Some(m) if m < 1 => {
+            return Err(value_error(format!("`max_iter` = {m}: must be at least 1")));
+        }
+        Some(m) => Some(usize::try_from(m).unwrap_or(usize::MAX)),
+        None => None,
+    };
     let (b1, b2) = bodies(material)?;
     let load = LoadSpec { force, approach };
     let solver = SolverSpec { tol, max_iter };
@@ -116,7 +124,9 @@ pub fn solve_normal<'py>(
             value_error(
                 e.to_string()
                     .replace("[load] ", "")
-                    .replace("[solver] ", ""),
+                    .replace("[solver] ", "")
+                    .replace("`load.", "`")
+                    .replace("`solver.", "`"),
             )
         })?;
     let (result, time) = released(py, move || {

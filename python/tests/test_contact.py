@@ -169,6 +169,10 @@ def test_solve_normal_bad_input_names_the_key():
         dyncontact.solve_normal(gap, -1.0, dx, STEEL, force=1.0)
     with pytest.raises(ValueError, match="tol"):
         dyncontact.solve_normal(gap, dx, dx, STEEL, force=1.0, tol=0.0)
+    with pytest.raises(ValueError, match="`max_iter` = -1: must be at least 1"):
+        dyncontact.solve_normal(gap, dx, dx, STEEL, force=1.0, max_iter=-1)
+    with pytest.raises(ValueError, match=r"`force` = 1e300: must lie in"):
+        dyncontact.solve_normal(gap, dx, dx, STEEL, force=1e300)
     bad = gap.copy()
     bad[3, 5] = np.nan
     with pytest.raises(ValueError, match=r"gap.*\(5, 3\)"):
