@@ -210,6 +210,9 @@ struct Work {
     outputs: Vec<LawOutput>,
     delta: Vec<f64>,
     prev_force: Vec<f64>,
+    /// Per wheel: the predictor's approach at the last extrapolated start, and the number of
+    /// accepted steps + 1 then (0: none); see [`Work::start_point`].
+    predicted: Vec<(f64, usize)>,
     last_df: Vec<f64>,
     active: Vec<usize>,
     compliance: Vec<f64>,
@@ -233,6 +236,24 @@ struct Work {
 }
 
 impl Work {
+    /// The approach at which the extrapolated start linearises wheel `k`'s law (a point
+    /// contact), given the predictor's approach `delta_p` in the step after `steps` accepted
+    /// ones: `δ̃ + (δ_n − δ̃_n)`, the predictor's approach corrected by the predictor's error
+    /// in the previous step (the approach δ_n it converged to, `delta`, minus its predicted
+    /// δ̃_n), when the wheel's last start was in that step; else `δ̃`. The predictor's error
+    /// varies slowly from step to step, so this is closer to the converged approach than δ̃
+    /// (any point gives the same converged step: it only saves iterations).
+    fn start_point(&mut self, k: usize, delta_p: f64, steps: usize) -> f64 {
+        let (last, stamp) = self.predicted[k];
+        self.predicted[k] = (delta_p, steps + 1);
+        let correction = self.delta[k] - last;
+        if stamp == steps && correction.is_finite() {
+            delta_p + correction
+        } else {
+            delta_p
+        }
+    }
+
     /// Bridge deflection under wheel k, `w(x_k) = Σ_j q_j w_j(x_k)` \[m\], at the state `x`
     /// (mode shapes of the last [`Simulation::wheel_geometry`]).
     #[inline]

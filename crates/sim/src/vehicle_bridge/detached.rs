@@ -323,6 +323,7 @@ impl Simulation {
         // (K_n⁻¹ + S) F = K_n⁻¹ F_n + z₀ + r − δ_n; for point contacts (F_n, k_n, δ_n) are
         // the law at the predicted approach instead of at the end of the previous step.
         let wheels = k0..k0 + MAX_WHEELS;
+        let point = wheels.clone().all(|k| is_point(&self.contacts[k]));
         let usable = wheels.clone().all(|k| {
             w.outputs[k].force > 0.0
                 && w.outputs[k].stiffness > 0.0
@@ -332,13 +333,12 @@ impl Simulation {
             let mut compliance = [0.0; MAX_WHEELS];
             let mut rhs = [0.0; MAX_WHEELS];
             let mut positive = true;
-            let point = wheels.clone().all(|k| is_point(&self.contacts[k]));
             for c in 0..MAX_WHEELS {
                 let k = k0 + c;
                 // A point contact's law linearised at the predicted approach δ̃ = z̃ + r, as
                 // in `Simulation::extrapolated_start`: F ≈ F(δ̃) + k(δ̃)(δ − δ̃).
                 let (f_n, k_n, delta_n) = if point {
-                    let delta = z[c] + rk[c];
+                    let delta = self.work.start_point(k, z[c] + rk[c], self.stats.steps);
                     let Ok(out) =
                         evaluate_wheel(&mut self.contacts, &mut self.work, k, delta, rk[c], true)
                     else {
@@ -365,7 +365,10 @@ impl Simulation {
         let mut history = [f64::INFINITY; 2];
         let mut growth = 0;
         let mut floor = self.work.force_floor;
-        let mut prev = [0.0; MAX_WHEELS];
+        // After a start of point contacts the state carries the forces φ: the first
+        // evaluation's change is |F(δ) − φ|, the residual of the contact laws.
+        let started = point && phi.is_some();
+        let mut prev = phi.unwrap_or([0.0; MAX_WHEELS]);
         for it in 1..=self.scenario.coupling.max_iter {
             // The contact laws at the iterate (the tangent at the first evaluation).
             let mut forces = [0.0; MAX_WHEELS];
@@ -387,22 +390,6 @@ impl Simulation {
                 active[c] = out.stiffness > 0.0;
                 compliance[c] = if active[c] { 1.0 / out.stiffness } else { 0.0 };
             }
-            if let Some(phi) = &phi
-                && it > 1
-            {
-                let c = (0..MAX_WHEELS).fold(0.0f64, |m, c| m.max((forces[c] - prev[c]).abs()));
-                growth = if c > change { growth + 1 } else { 0 };
-                change = c;
-                if !change.is_finite() || (growth >= 4 && change > 10.0 * self.force_scale) {
-                    return Err(failure(it, change, "the iteration diverges".to_string()));
-                }
-                let stagnant = change <= 16.0 * floor && history[0].min(history[1]) <= change;
-                if change <= tol.max(floor) || stagnant {
-                    return Ok(self.finish_detached(v, &red.state(phi), contact_iterations));
-                }
-                history = [history[1], change];
-            }
-            prev = forces;
             if it == 1 {
                 let x = phi.as_ref().map_or(x_pred, |phi| red.state(phi));
                 floor = detached_floor(
@@ -417,6 +404,22 @@ impl Simulation {
                     s,
                 );
             }
+            if let Some(phi) = &phi
+                && (it > 1 || started)
+            {
+                let c = (0..MAX_WHEELS).fold(0.0f64, |m, c| m.max((forces[c] - prev[c]).abs()));
+                growth = if c > change { growth + 1 } else { 0 };
+                change = c;
+                if !change.is_finite() || (growth >= 4 && change > 10.0 * self.force_scale) {
+                    return Err(failure(it, change, "the iteration diverges".to_string()));
+                }
+                let stagnant = change <= 16.0 * floor && history[0].min(history[1]) <= change;
+                if change <= tol.max(floor) || stagnant {
+                    return Ok(self.finish_detached(v, &red.state(phi), contact_iterations));
+                }
+                history = [history[1], change];
+            }
+            prev = forces;
             // The Woodbury update in the wheels: (K_c⁻¹ + S) ΔF = E B⁻¹(−R) = z₀ − z − S F.
             let rhs: [f64; MAX_WHEELS] =
                 std::array::from_fn(|c| red.z0[c] - z[c] - dot(&red.s[c], &forces));
