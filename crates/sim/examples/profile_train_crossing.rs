@@ -40,7 +40,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let wheels = &run.wheels;
     let fold = |f: &dyn Fn(&sim::vehicle_bridge::WheelSummary) -> f64, max: bool| {
         wheels.iter().map(f).fold(
-            if max { f64::NEG_INFINITY } else { f64::INFINITY },
+            if max {
+                f64::NEG_INFINITY
+            } else {
+                f64::INFINITY
+            },
             |m, v| if max { m.max(v) } else { m.min(v) },
         )
     };

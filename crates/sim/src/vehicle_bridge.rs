@@ -50,11 +50,15 @@
 //!   reference.
 //!
 //! A rigid contact enters all of them as a zero compliance (an exact constraint) whose row v_k
-//! is its acceleration-level gradient u_k (module `rigid`); Picard needs compliant contacts. The quasi-Newton iteration starts from the predictor corrected by the
-//! previous step's contact linearisation (`F ≈ F_n + k_n(δ − δ_n)`, column forces carried with
-//! the wheel), computes the BEM tangent at the first contact evaluation of a step only, and
-//! accepts the corrected state with the linearised forces once every predicted force
-//! correction is within the tolerance; in a smooth run most steps need one contact solve. A step whose iteration fails (no convergence in `max_iter`, divergence,
+//! is its acceleration-level gradient u_k (module `rigid`); Picard needs compliant contacts. The quasi-Newton iteration starts from the predictor corrected by a
+//! contact linearisation: a point contact's law at the predicted approach (the predictor's,
+//! corrected by its error in the last step: `F ≈ F(δ*) + k(δ*)(δ − δ*)`), any other law at the
+//! previous step's (`F ≈ F_n + k_n(δ − δ_n)`, column forces carried with the wheel). It
+//! computes the BEM tangent at the first contact evaluation of a step only, and accepts the
+//! corrected state with the linearised forces once every predicted force correction is within
+//! the tolerance, or — after a start of point contacts, whose state carries known forces φ —
+//! the state once the first evaluation is within the tolerance of φ; in a smooth run most
+//! steps need one contact evaluation (two before 2026-11-28, issue #10). A step whose iteration fails (no convergence in `max_iter`, divergence,
 //! a contact-solver failure) is retried as two half steps, recursively up to `max_halvings`
 //! times; every retry is counted in [`SolverStats::failed_steps`], and a step that still fails
 //! is an error. Multibody vehicles at rest ahead of the span are held out of the coupled step,
