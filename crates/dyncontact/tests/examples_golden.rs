@@ -1214,7 +1214,7 @@ fn vehicle_bridge_examples_match_the_docs() {
         &["run"],
         &[
             q("simulated_time_s", 1.417, 0.001),
-            q("solver/mean_iterations_per_step", 2.22, 0.01),
+            q("solver/mean_iterations_per_step", 1.55, 0.01),
             n("solver/max_iterations_per_step", 4.0),
             q("contact/min_force", 0.0, 0.5),
             q("contact/max_force", 419.5e3, 0.1e3),

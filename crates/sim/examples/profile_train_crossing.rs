@@ -36,5 +36,28 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         sim.held_vehicle_steps(),
         sim.detached_vehicle_steps()
     );
+    // The peaks a change of the coupling's round-off or tolerance must leave alone.
+    let wheels = &run.wheels;
+    let fold = |f: &dyn Fn(&sim::vehicle_bridge::WheelSummary) -> f64, max: bool| {
+        wheels.iter().map(f).fold(
+            if max {
+                f64::NEG_INFINITY
+            } else {
+                f64::INFINITY
+            },
+            |m, v| if max { m.max(v) } else { m.min(v) },
+        )
+    };
+    println!(
+        "peaks: deflection {:e} / {:e} m, acceleration {:e} / {:e} m/s², contact force {:e} / {:e} N, body acceleration {:e} m/s², wheel acceleration {:e} m/s²",
+        run.deflection.max.value,
+        run.deflection.min.value,
+        run.acceleration.max.value,
+        run.acceleration.min.value,
+        fold(&|w| w.force.max.value, true),
+        fold(&|w| w.force.min.value, false),
+        fold(&|w| w.max_body_acceleration, true),
+        fold(&|w| w.max_wheel_acceleration, true),
+    );
     Ok(())
 }

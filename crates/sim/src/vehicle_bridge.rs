@@ -50,11 +50,15 @@
 //!   reference.
 //!
 //! A rigid contact enters all of them as a zero compliance (an exact constraint) whose row v_k
-//! is its acceleration-level gradient u_k (module `rigid`); Picard needs compliant contacts. The quasi-Newton iteration starts from the predictor corrected by the
-//! previous step's contact linearisation (`F ≈ F_n + k_n(δ − δ_n)`, column forces carried with
-//! the wheel), computes the BEM tangent at the first contact evaluation of a step only, and
-//! accepts the corrected state with the linearised forces once every predicted force
-//! correction is within the tolerance; in a smooth run most steps need one contact solve. A step whose iteration fails (no convergence in `max_iter`, divergence,
+//! is its acceleration-level gradient u_k (module `rigid`); Picard needs compliant contacts. The quasi-Newton iteration starts from the predictor corrected by a
+//! contact linearisation: a point contact's law at the predicted approach (the predictor's,
+//! corrected by its error in the last step: `F ≈ F(δ*) + k(δ*)(δ − δ*)`), any other law at the
+//! previous step's (`F ≈ F_n + k_n(δ − δ_n)`, column forces carried with the wheel). It
+//! computes the BEM tangent at the first contact evaluation of a step only, and accepts the
+//! corrected state with the linearised forces once every predicted force correction is within
+//! the tolerance, or — after a start of point contacts, whose state carries known forces φ —
+//! the state once the first evaluation is within the tolerance of φ; in a smooth run most
+//! steps need one contact evaluation (two before 2026-11-28, issue #10). A step whose iteration fails (no convergence in `max_iter`, divergence,
 //! a contact-solver failure) is retried as two half steps, recursively up to `max_halvings`
 //! times; every retry is counted in [`SolverStats::failed_steps`], and a step that still fails
 //! is an error. Multibody vehicles at rest ahead of the span are held out of the coupled step,
@@ -210,6 +214,9 @@ struct Work {
     outputs: Vec<LawOutput>,
     delta: Vec<f64>,
     prev_force: Vec<f64>,
+    /// Per wheel: the predictor's approach at the last extrapolated start, and the number of
+    /// accepted steps + 1 then (0: none); see [`Work::start_point`].
+    predicted: Vec<(f64, usize)>,
     last_df: Vec<f64>,
     active: Vec<usize>,
     compliance: Vec<f64>,
@@ -233,6 +240,24 @@ struct Work {
 }
 
 impl Work {
+    /// The approach at which the extrapolated start linearises wheel `k`'s law (a point
+    /// contact), given the predictor's approach `delta_p` in the step after `steps` accepted
+    /// ones: `δ̃ + (δ_n − δ̃_n)`, the predictor's approach corrected by the predictor's error
+    /// in the previous step (the approach δ_n it converged to, `delta`, minus its predicted
+    /// δ̃_n), when the wheel's last start was in that step; else `δ̃`. The predictor's error
+    /// varies slowly from step to step, so this is closer to the converged approach than δ̃
+    /// (any point gives the same converged step: it only saves iterations).
+    fn start_point(&mut self, k: usize, delta_p: f64, steps: usize) -> f64 {
+        let (last, stamp) = self.predicted[k];
+        self.predicted[k] = (delta_p, steps + 1);
+        let correction = self.delta[k] - last;
+        if stamp == steps && correction.is_finite() {
+            delta_p + correction
+        } else {
+            delta_p
+        }
+    }
+
     /// Bridge deflection under wheel k, `w(x_k) = Σ_j q_j w_j(x_k)` \[m\], at the state `x`
     /// (mode shapes of the last [`Simulation::wheel_geometry`]).
     #[inline]

@@ -6,7 +6,7 @@
 mod support;
 
 use sim::vehicle_bridge::Simulation;
-use support::simulation;
+use support::{relative_difference, simulation};
 
 const BRIDGE: &str = "[bridge]\nlength = 25.0\nEI = 8.323e9\nmass_per_length = 2303.0\nsupports = \"simply_supported\"\nmodes = 20\ndamping_ratio = 0.02\n";
 const CAR: &str = "type = \"bogie_vehicle\"\nlength = 25.0\nbody_mass = 32000.0\nbody_pitch_inertia = 1.97e6\nbogie_spacing = 19.0\nbogie_mass = 2615.0\nbogie_pitch_inertia = 1476.0\nwheelbase = 2.56\nwheelset_mass = 1813.0\nprimary_stiffness = 2.4e6\nprimary_damping = 8.0e3\nsecondary_stiffness = 8.6e5\nsecondary_damping = 4.0e4\n";
@@ -45,18 +45,6 @@ fn history(mut sim: Simulation) -> (History, u64, u64) {
     })
     .unwrap();
     (h, sim.held_vehicle_steps(), sim.detached_vehicle_steps())
-}
-
-/// Largest difference of two histories relative to the largest magnitude of the reference.
-fn relative_difference(a: &[Vec<f64>], b: &[Vec<f64>]) -> f64 {
-    assert_eq!(a.len(), b.len());
-    let scale = b.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
-    let diff = a
-        .iter()
-        .flatten()
-        .zip(b.iter().flatten())
-        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
-    diff / scale
 }
 
 /// Runs `text` with and without the hold and checks the held run against the full step: the

@@ -381,6 +381,7 @@ impl Simulation {
             outputs: vec![LawOutput::default(); nw],
             delta: vec![0.0; nw],
             prev_force: vec![0.0; nw],
+            predicted: vec![(0.0, 0); nw],
             last_df: vec![0.0; nw],
             active: Vec::with_capacity(nw),
             compliance: vec![0.0; nw],

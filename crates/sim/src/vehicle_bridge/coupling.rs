@@ -7,6 +7,7 @@ use std::ops::Range;
 use super::accept::{Accepted, StateUpdate};
 use super::contact::{is_point, is_rigid};
 use super::contact_eval::add_modal_load;
+use super::detached::evaluate_wheel;
 use super::linalg::{contact_update, dense_contact_update};
 use super::step::StepFailure;
 use super::{CouplingSolver, Simulation, VehicleBridgeError};
@@ -34,7 +35,11 @@ impl Simulation {
     /// contact evaluations correct it; with a smooth force history the first correction is then
     /// often already below the tolerance, so the step needs one contact solve instead of two.
     /// Skipped unless every wheel is in compliant contact with a known tangent.
-    fn extrapolated_start(&mut self, s: f64) {
+    ///
+    /// Returns whether the state is now the solution under known forces φ of point contacts
+    /// (in `work.prev_force`): the first evaluation can then be compared with φ (the change
+    /// test of the iteration, `Simulation::try_step`).
+    fn extrapolated_start(&mut self, s: f64) -> bool {
         let m = self.scenario.bridge.n_modes();
         let live = &self.resting.live;
         let nl = live.len();
@@ -46,8 +51,9 @@ impl Simulation {
                 && w.column_force[k].iter().sum::<f64>() > 0.0
         });
         if !usable {
-            return;
+            return false;
         }
+        let mut points = true;
         self.a_matrix.mul(&w.x, &mut w.res);
         let rows = &self.resting.live_rows;
         residual_rows(rows, &w.r, &mut w.res);
@@ -55,12 +61,33 @@ impl Simulation {
         for (a, &k) in live.iter().enumerate() {
             let iw = self.wheel_dof[k];
             let delta = w.approach(k, iw, &w.x);
-            let shapes = &w.shape_at_wheel[k];
-            let (f_n, k_n) = (w.outputs[k].force, w.outputs[k].stiffness);
-            let force = f_n + k_n * (delta - w.delta[k]);
-            if force <= 0.0 {
-                return;
+            // A point contact's law linearised at the predicted approach δ* (the predictor's,
+            // corrected by its error in the last step: `Work::start_point`):
+            // F ≈ F(δ*) + k(δ*)(δ − δ*), whose error ½ F'' (δ − δ*)² is far below that of the
+            // tangent of the previous step, ½ F'' (δ − δ_n)², so that the first evaluation is
+            // often within the tolerance of the forces the start carries, and otherwise the
+            // first correction (one contact evaluation per step instead of two). Other laws
+            // (a BEM solve per evaluation): F ≈ F_n + k_n (δ − δ_n).
+            let point = is_point(&self.contacts[k]);
+            points &= point;
+            let (force, k_n) = if point {
+                let rk = w.r_at_wheel[k];
+                let at = w.start_point(k, delta, self.stats.steps);
+                match evaluate_wheel(&mut self.contacts, w, k, at, rk, true) {
+                    // The linearised law at the predictor's approach.
+                    Ok(out) => (out.force + out.stiffness * (delta - at), out.stiffness),
+                    Err(_) => return false,
+                }
+            } else {
+                let (f_n, k_n) = (w.outputs[k].force, w.outputs[k].stiffness);
+                (f_n + k_n * (delta - w.delta[k]), k_n)
+            };
+            if force <= 0.0 || k_n <= 0.0 || !k_n.is_finite() {
+                return false;
             }
+            // The linearised force at the linearisation point (+ ΔF of the update below).
+            w.prev_force[k] = force;
+            let shapes = &w.shape_at_wheel[k];
             let cols: f64 = w.column_force[k].iter().sum();
             let scale = force / cols;
             // Only the pattern (modes and the wheel) is ever written, so the rest stays zero.
@@ -78,7 +105,6 @@ impl Simulation {
             }
             // −R gets +s I_k on the modes and −s F_k on the wheel; ĝ = (−I/F, +1), exactly
             // −w(x_k) for a point contact (as in `evaluate_contacts`).
-            let point = is_point(&self.contacts[k]);
             for j in 0..mk {
                 w.res[j] += s * gh[j];
                 gh[j] = if point { -shapes[j] } else { -gh[j] / force };
@@ -111,7 +137,13 @@ impl Simulation {
                 .all(|r| w.res[r.clone()].iter().all(|d| d.is_finite()))
         {
             add_rows(rows, &w.res, &mut w.x);
+            // φ = F + ΔF, the forces the state now carries.
+            for (a, &k) in live.iter().enumerate() {
+                w.prev_force[k] += w.df[a];
+            }
+            return points;
         }
+        false
     }
 
     /// Bounds the contact forces' floating-point floor where the bound decides the same as
@@ -301,9 +333,10 @@ impl Simulation {
             self.work.x[i] = self.eq.q_pred[i];
         }
         self.rigid_setup().map_err(fatal)?;
-        if self.scenario.coupling.solver == CouplingSolver::QuasiNewton {
-            self.extrapolated_start(s);
-        }
+        // After a start of point contacts the state carries the forces φ (`prev_force`): the
+        // first evaluation's change is then |F(δ) − φ|, the residual of the contact laws.
+        let started = self.scenario.coupling.solver == CouplingSolver::QuasiNewton
+            && self.extrapolated_start(s);
         let tol = self.scenario.coupling.tol * self.force_scale;
         let solver = self.scenario.coupling.solver;
         let mut change = f64::INFINITY;
@@ -332,10 +365,17 @@ impl Simulation {
                 });
             }
             self.rigid_constraints();
+            if it == 1 {
+                // The force floor at the first iterate (needed by the change test below), from
+                // its A x, which is also the first residual's.
+                let w = &mut self.work;
+                self.a_matrix.mul(&w.x, &mut w.floor_ax);
+                self.force_floor(s, tol);
+            }
             let w = &mut self.work;
             let live = &self.resting.live;
             contact_iterations += live.iter().map(|&k| w.outputs[k].iterations).sum::<usize>();
-            if it > 1 {
+            if it > 1 || started {
                 let mut c = 0.0f64;
                 for &k in live {
                     let d = if is_rigid(&self.contacts[k]) {
@@ -376,10 +416,11 @@ impl Simulation {
             }
             // Residual R = A x − r − s Σ G_k, written as −R into `res` (on the rows outside
             // the held vehicles; theirs are zero).
-            self.a_matrix.mul(&w.x, &mut w.res);
             if it == 1 {
-                // A x of this iterate is also the force floor's (`force_floor`, below).
-                w.floor_ax.copy_from_slice(&w.res);
+                // A x of this iterate is the force floor's (above).
+                w.res.copy_from_slice(&w.floor_ax);
+            } else {
+                self.a_matrix.mul(&w.x, &mut w.res);
             }
             residual_rows(&self.resting.live_rows, &w.r, &mut w.res);
             for &k in live {
@@ -389,10 +430,6 @@ impl Simulation {
                 w.res[self.wheel_dof[k]] -= s * w.outputs[k].force;
             }
             Self::zero_held(&self.resting.held_dofs, &mut w.res);
-            if it == 1 {
-                self.force_floor(s, tol);
-            }
-            let w = &mut self.work;
             let live = &self.resting.live;
             let solved = match solver {
                 CouplingSolver::Picard => {

@@ -40,7 +40,7 @@
 
 use halfspace::law::{ContactModel as LawModel, LawOutput};
 
-use super::contact::wheel_error;
+use super::contact::{is_point, wheel_error};
 use super::linalg::small_solve_in_place;
 use super::step::StepFailure;
 use super::vehicles::VehicleDofs;
@@ -218,8 +218,9 @@ fn failure(iterations: usize, change: f64, reason: String) -> StepFailure {
 
 /// The contact law of wheel `k` (a point contact) at the approach `delta`, with the rail
 /// height `rk` under it, into `w.outputs[k]` and `w.delta[k]` (the tangent if `tangent`): the
-/// one place where the detached solve evaluates a contact.
-fn evaluate_wheel(
+/// one place where the detached solve (and the extrapolated start of the coupled step, for a
+/// point contact) evaluates a contact.
+pub(super) fn evaluate_wheel(
     contacts: &mut [LawModel],
     w: &mut Work,
     k: usize,
@@ -316,10 +317,13 @@ impl Simulation {
         // The wheels' displacements and the forces φ with z = z₀ − S φ (None: the predictor).
         let mut z: [f64; MAX_WHEELS] = std::array::from_fn(|c| x_pred[OWN + c]);
         let mut phi: Option<[f64; MAX_WHEELS]> = None;
+        let mut contact_iterations = 0;
         // Extrapolated start (as `Simulation::extrapolated_start`, on this vehicle): the
         // linearised laws F = F_n + k_n (z + r − δ_n) with z = z₀ − S F, i.e.
-        // (K_n⁻¹ + S) F = K_n⁻¹ F_n + z₀ + r − δ_n.
+        // (K_n⁻¹ + S) F = K_n⁻¹ F_n + z₀ + r − δ_n; for point contacts (F_n, k_n, δ_n) are
+        // the law at the predicted approach instead of at the end of the previous step.
         let wheels = k0..k0 + MAX_WHEELS;
+        let point = wheels.clone().all(|k| is_point(&self.contacts[k]));
         let usable = wheels.clone().all(|k| {
             w.outputs[k].force > 0.0
                 && w.outputs[k].stiffness > 0.0
@@ -331,10 +335,26 @@ impl Simulation {
             let mut positive = true;
             for c in 0..MAX_WHEELS {
                 let k = k0 + c;
-                let (f_n, k_n) = (w.outputs[k].force, w.outputs[k].stiffness);
-                positive &= f_n + k_n * (z[c] + rk[c] - w.delta[k]) > 0.0;
+                // A point contact's law linearised at the predicted approach δ̃ = z̃ + r, as
+                // in `Simulation::extrapolated_start`: F ≈ F(δ̃) + k(δ̃)(δ − δ̃).
+                let (f_n, k_n, delta_n) = if point {
+                    let delta = self.work.start_point(k, z[c] + rk[c], self.stats.steps);
+                    let Ok(out) =
+                        evaluate_wheel(&mut self.contacts, &mut self.work, k, delta, rk[c], true)
+                    else {
+                        // The iteration's first evaluation reports the error.
+                        positive = false;
+                        break;
+                    };
+                    contact_iterations += out.iterations;
+                    (out.force, out.stiffness, delta)
+                } else {
+                    let w = &self.work;
+                    (w.outputs[k].force, w.outputs[k].stiffness, w.delta[k])
+                };
+                positive &= f_n + k_n * (z[c] + rk[c] - delta_n) > 0.0 && k_n > 0.0;
                 compliance[c] = 1.0 / k_n;
-                rhs[c] = compliance[c] * f_n + red.z0[c] + rk[c] - w.delta[k];
+                rhs[c] = compliance[c] * f_n + red.z0[c] + rk[c] - delta_n;
             }
             if positive && let Some(f) = red.solve(&compliance, &[true; MAX_WHEELS], &rhs) {
                 z = red.wheels(&f);
@@ -344,9 +364,11 @@ impl Simulation {
         let mut change = f64::INFINITY;
         let mut history = [f64::INFINITY; 2];
         let mut growth = 0;
-        let mut floor = w.force_floor;
-        let mut prev = [0.0; MAX_WHEELS];
-        let mut contact_iterations = 0;
+        let mut floor = self.work.force_floor;
+        // After a start of point contacts the state carries the forces φ: the first
+        // evaluation's change is |F(δ) − φ|, the residual of the contact laws.
+        let started = point && phi.is_some();
+        let mut prev = phi.unwrap_or([0.0; MAX_WHEELS]);
         for it in 1..=self.scenario.coupling.max_iter {
             // The contact laws at the iterate (the tangent at the first evaluation).
             let mut forces = [0.0; MAX_WHEELS];
@@ -368,22 +390,6 @@ impl Simulation {
                 active[c] = out.stiffness > 0.0;
                 compliance[c] = if active[c] { 1.0 / out.stiffness } else { 0.0 };
             }
-            if let Some(phi) = &phi
-                && it > 1
-            {
-                let c = (0..MAX_WHEELS).fold(0.0f64, |m, c| m.max((forces[c] - prev[c]).abs()));
-                growth = if c > change { growth + 1 } else { 0 };
-                change = c;
-                if !change.is_finite() || (growth >= 4 && change > 10.0 * self.force_scale) {
-                    return Err(failure(it, change, "the iteration diverges".to_string()));
-                }
-                let stagnant = change <= 16.0 * floor && history[0].min(history[1]) <= change;
-                if change <= tol.max(floor) || stagnant {
-                    return Ok(self.finish_detached(v, &red.state(phi), contact_iterations));
-                }
-                history = [history[1], change];
-            }
-            prev = forces;
             if it == 1 {
                 let x = phi.as_ref().map_or(x_pred, |phi| red.state(phi));
                 floor = detached_floor(
@@ -398,6 +404,22 @@ impl Simulation {
                     s,
                 );
             }
+            if let Some(phi) = &phi
+                && (it > 1 || started)
+            {
+                let c = (0..MAX_WHEELS).fold(0.0f64, |m, c| m.max((forces[c] - prev[c]).abs()));
+                growth = if c > change { growth + 1 } else { 0 };
+                change = c;
+                if !change.is_finite() || (growth >= 4 && change > 10.0 * self.force_scale) {
+                    return Err(failure(it, change, "the iteration diverges".to_string()));
+                }
+                let stagnant = change <= 16.0 * floor && history[0].min(history[1]) <= change;
+                if change <= tol.max(floor) || stagnant {
+                    return Ok(self.finish_detached(v, &red.state(phi), contact_iterations));
+                }
+                history = [history[1], change];
+            }
+            prev = forces;
             // The Woodbury update in the wheels: (K_c⁻¹ + S) ΔF = E B⁻¹(−R) = z₀ − z − S F.
             let rhs: [f64; MAX_WHEELS] =
                 std::array::from_fn(|c| red.z0[c] - z[c] - dot(&red.s[c], &forces));

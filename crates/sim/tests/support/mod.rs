@@ -1,8 +1,8 @@
 //! Test fixtures shared by the `sim` integration tests (`mod support;` in each test file):
 //! reading scenario texts and the examples, running a sweep's passages, building a
 //! vehicle–bridge simulation with its vehicles (and its track), the exact moving-load response
-//! of a `kind = "moving_load"` text, and the closed-form static influence line of a simply
-//! supported span.
+//! of a `kind = "moving_load"` text, the closed-form static influence line of a simply
+//! supported span, and the relative difference of two time histories.
 // Each test crate uses a subset of these helpers.
 #![allow(dead_code)]
 
@@ -91,4 +91,17 @@ pub fn midspan_influence(l: f64, ei: f64, a: f64, p: f64) -> f64 {
     }
     let a = a.min(l - a);
     p * a * (3.0 * l * l - 4.0 * a * a) / (48.0 * ei)
+}
+
+/// Largest difference of two histories relative to the largest magnitude of the reference `b`
+/// (time histories: one row per step).
+pub fn relative_difference(a: &[Vec<f64>], b: &[Vec<f64>]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    let scale = b.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+    let diff = a
+        .iter()
+        .flatten()
+        .zip(b.iter().flatten())
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    diff / scale
 }
