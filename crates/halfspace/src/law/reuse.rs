@@ -71,7 +71,7 @@ const FACTOR_TOL: f64 = 1e-10;
 
 /// Grids of at most this many elements keep the dense factor of A_CC ([`SetFactor`]; 8 MB at
 /// most); larger grids solve the responses by CG.
-const MAX_FACTOR_GRID: usize = 1024;
+pub(super) const MAX_FACTOR_GRID: usize = 1024;
 
 /// Contact sets larger than this solve the responses by CG (the factor's memory and the cost
 /// of a new factorization, m³/3).
