@@ -3,7 +3,7 @@
 //! Each node is the exact discrete solution at its approach: the dense factor's active-set
 //! solve ([`set_solve`]; references.md §C8.4, "Set changes by the factor"), started from a
 //! neighbouring node's contact set, exact to round-off, or NormCG to [`NODE_TOL`] where that
-//! does not converge and on grids above [`MAX_FACTOR_GRID`] elements. A batch of nodes is
+//! does not converge and on grids above 1024 elements (`MAX_FACTOR_GRID`). A batch of nodes is
 //! split into two contiguous halves solved by two solvers on two threads (`std::thread::scope`,
 //! not rayon: the table is built inside a law's evaluation, within rayon's parallel pass over
 //! the wheels, where a nested rayon job could run another wheel that waits for this very
@@ -16,7 +16,7 @@ use crate::material::Material;
 use crate::normcg::{NormalLoad, NormalSolver, SolverOptions};
 use crate::solution::NormalSolution;
 
-use super::super::reuse::MAX_FACTOR_GRID;
+use super::super::reuse::grid_factor;
 use super::super::set_factor::SetFactor;
 use super::super::set_solve::{self, SetSolveWork};
 #[cfg(doc)]
@@ -46,16 +46,7 @@ impl NodeSolver {
     ) -> Result<Self, ContactError> {
         let mut solver = NormalSolver::new(grid, material)?;
         let n = grid.len();
-        let factor = if n <= MAX_FACTOR_GRID {
-            // K(dx, dy): the displacement of a unit pressure on element 0 at offset (dx, dy).
-            let mut unit = vec![0.0; n];
-            unit[0] = 1.0;
-            let mut kernel = vec![0.0; n];
-            solver.displacement(&unit, &mut kernel)?;
-            Some(SetFactor::new(kernel, grid.nx))
-        } else {
-            None
-        };
+        let factor = grid_factor(&mut solver)?;
         Ok(NodeSolver {
             solver,
             factor,
