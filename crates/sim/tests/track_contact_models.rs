@@ -495,6 +495,33 @@ fn newmark_on_the_track_must_be_unconditionally_stable() {
     }
 }
 
+/// A named conditionally stable Newmark scheme, `method = "linear_acceleration"` (β = 1/6 <
+/// γ/2), is refused naming the key the file set, `integrator.method`, and the remedy; before,
+/// the refusal named `integrator.beta` = 0.1667, a key the file did not contain (found by a
+/// campaign of sensible scenarios through the CLI, 2026-11-28). `newmark` with its own `gamma`
+/// still names `integrator.beta` (test above); the default method runs.
+#[test]
+fn a_conditionally_stable_named_method_on_the_track_names_the_method() {
+    for contact in ["model = \"hertz\"", "model = \"rigid\""] {
+        let text = with_contact(contact, 0.05);
+        let refused = text.replace("method = \"newmark\"", "method = \"linear_acceleration\"");
+        let e = refusal(&refused).expect("linear_acceleration on the track is refused");
+        assert!(
+            e.contains("`integrator.method` = \"linear_acceleration\"")
+                && e.contains("gamma/2 = 0.2500")
+                && e.contains("use newmark")
+                && !e.contains("integrator.beta"),
+            "{e}"
+        );
+        let accepted = if contact.contains("rigid") {
+            text.replace("method = \"newmark\"", "method = \"generalized_alpha\"")
+        } else {
+            text
+        };
+        refused_then_runs(&refused, &["`integrator.method`"], &accepted);
+    }
+}
+
 /// A moving force must be on the modelled track for the whole run, like a wheel: one stepping
 /// onto the rail's free start (or off its free end) would load it suddenly, a transient of the
 /// model's boundary (measured with the CLI: a 153.8 kN axle entering the rail's start at

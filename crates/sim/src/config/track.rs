@@ -445,3 +445,31 @@ pub fn check_size(spec: &TrackSpec, bridge: f64) -> Result<(), ConfigError> {
     }
     Ok(())
 }
+
+/// A named method that is a conditionally stable Newmark scheme (2β < γ, e.g.
+/// `linear_acceleration`, β = 1/6) is refused on a `[track]` naming `integrator.method`, the
+/// key the file set (the check of `Simulation::with_track` names `integrator.beta`, right for
+/// `method = "newmark"` with its own `beta`/`gamma`). The rail's stiffest modes lie far beyond
+/// any conditional stability limit (references.md §D3.5; docs/track.md, "Restrictions").
+pub(crate) fn check_method(
+    method_name: &str,
+    integrator: &crate::vehicle_bridge::Integrator,
+) -> Result<(), ConfigError> {
+    use crate::vehicle_bridge::Integrator;
+    use integrate::StructuralMethod;
+    let key = method_name.trim().to_ascii_lowercase().replace('-', "_");
+    if key == "newmark" {
+        return Ok(());
+    }
+    if let Integrator::Structural(StructuralMethod::Newmark { beta, gamma }) = integrator
+        && 2.0 * beta < gamma - 1e-12
+    {
+        return Err(invalid!(
+            "invalid `integrator.method` = \"{}\": [track] needs an unconditionally stable method, and {} is Newmark with beta = {beta:.4} < gamma/2 = {:.4} (conditionally stable; the rail's stiffest modes are far beyond its stability limit): use newmark (the default, beta = 0.25), hht or generalized_alpha",
+            method_name.trim(),
+            method_name.trim(),
+            0.5 * gamma
+        ));
+    }
+    Ok(())
+}

@@ -242,3 +242,39 @@ fn articulated_checks(i: usize, a: &crate::train::Articulated) -> Result<(), Con
 /// Most bodies of one articulated vehicle in the coupled model (its 6n + 4 DOFs form one
 /// dense block of the step matrix, at most `linalg::MAX_DENSE_BLOCK` = 256).
 pub const MAX_ARTICULATED_BODIES: usize = 42;
+
+/// A `sprung_mass` vehicle of a train table rides on a massless wheel, which needs the rigid
+/// contact (docs/trains.md, docs/vehicle_bridge.md "Massless wheels"). With a compliant
+/// contact the refusal names the vehicle's entry and `contact.model`, the keys the file set
+/// (the wheel check of the simulation names `vehicle.wheels[k].wheel_mass`, a key only a
+/// `[vehicle]` file has).
+pub(crate) fn check_sprung_masses(
+    table: &super::train::TrainTable,
+    contact: &crate::vehicle_bridge::ContactModel,
+) -> Result<(), ConfigError> {
+    if matches!(contact, crate::vehicle_bridge::ContactModel::Rigid) {
+        return Ok(());
+    }
+    let sprung = table.vehicles.iter().position(|v| {
+        v.kind
+            .as_deref()
+            .is_some_and(|k| k.trim().eq_ignore_ascii_case("sprung_mass"))
+    });
+    match sprung {
+        Some(i) => Err(invalid!(
+            "invalid `contact.model` = \"{}\": train.vehicles[{i}] has type = \"sprung_mass\", a body on a massless wheel, which needs contact.model = \"rigid\" (a compliant contact would leave the wheel without inertia against the contact spring); use contact.model = \"rigid\", or type = \"quarter_car\" with a wheel_mass for a compliant contact",
+            contact_name(contact)
+        )),
+        None => Ok(()),
+    }
+}
+
+/// The scenario name of a contact model (`hertz`, `bem`).
+fn contact_name(contact: &crate::vehicle_bridge::ContactModel) -> &'static str {
+    use crate::vehicle_bridge::ContactModel;
+    match contact {
+        ContactModel::Rigid => "rigid",
+        ContactModel::Hertz => "hertz",
+        _ => "bem",
+    }
+}

@@ -336,6 +336,9 @@ pub fn build_in(file: VehicleBridgeFile, base: &Path) -> Result<VehicleBridgeCon
 
     let c = file.contact.as_ref();
     let (contact, geometry) = contact_of(c, wheels.len(), Some(base))?;
+    if let Some(table) = &file.train {
+        super::train_wheels::check_sprung_masses(table, &contact)?;
+    }
 
     let irregularity = match &file.irregularity {
         None => Irregularity::None,
@@ -460,6 +463,7 @@ pub fn build_in(file: VehicleBridgeFile, base: &Path) -> Result<VehicleBridgeCon
     let track = super::track::track(file.track.as_ref())?;
     if let Some(t) = &track {
         super::track::check_size(t, length)?;
+        super::track::check_method(method_name, &scenario.integrator)?;
     }
     Ok(VehicleBridgeConfig {
         scenario,
