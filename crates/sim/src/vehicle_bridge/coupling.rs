@@ -61,6 +61,7 @@ impl Simulation {
             if force <= 0.0 {
                 return;
             }
+            w.law.force[k] = force;
             let cols: f64 = w.column_force[k].iter().sum();
             let scale = force / cols;
             // Only the pattern (modes and the wheel) is ever written, so the rest stays zero.
@@ -111,6 +112,7 @@ impl Simulation {
                 .all(|r| w.res[r.clone()].iter().all(|d| d.is_finite()))
         {
             add_rows(rows, &w.res, &mut w.x);
+            self.record_linearised(true);
         }
     }
 
@@ -309,6 +311,7 @@ impl Simulation {
             self.work.x[i] = self.eq.q_pred[i];
         }
         self.rigid_setup().map_err(fatal)?;
+        self.work.law.valid = false;
         if self.scenario.coupling.solver == CouplingSolver::QuasiNewton {
             self.extrapolated_start(s);
         }
@@ -379,6 +382,20 @@ impl Simulation {
                 }
                 history = [history[1], change];
             }
+            // The laws' residual against the forces the iterate was solved with (opt-in,
+            // module `law_residual`; the floor is this step's from the second iteration on).
+            if !clamped && let Some(rho) = self.law_residual() {
+                let w = &mut self.work;
+                let limit = if it == 1 { tol } else { tol.max(w.force_floor) };
+                if rho <= limit {
+                    w.law.accepted += 1;
+                    change = rho;
+                    converged = true;
+                    break;
+                }
+            }
+            let w = &mut self.work;
+            let live = &self.resting.live;
             for &k in live {
                 w.prev_force[k] = w.outputs[k].force;
             }
@@ -485,6 +502,11 @@ impl Simulation {
                     fatal: None,
                 });
             }
+            if solver != CouplingSolver::Picard {
+                self.record_linearised(false);
+            }
+            let w = &mut self.work;
+            let live = &self.resting.live;
             // The held rows of the update are zero (they keep their state).
             let rows = &self.resting.live_rows;
             add_rows(rows, &w.res, &mut w.x);
