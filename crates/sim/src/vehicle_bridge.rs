@@ -78,6 +78,7 @@ mod coupling;
 mod detached;
 mod error;
 pub mod irregularity;
+mod law_residual;
 pub mod linalg;
 pub mod moving_forces;
 mod outputs;
@@ -237,6 +238,8 @@ struct Work {
     /// the steps whose floor was so bounded.
     floor_bound: bool,
     floor_bounded: u64,
+    /// Convergence by the contact laws' residual (opt-in; module `law_residual`).
+    law: law_residual::LawResidual,
 }
 
 impl Work {

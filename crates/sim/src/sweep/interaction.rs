@@ -210,7 +210,8 @@ fn passage_with(
 
 /// The coupled run of train `train` crossing at `speed` \[m/s\]: its leading axle at the span's
 /// entry, until its last axle has left the span, the force floor bounded
-/// (`Simulation::bound_force_floor`: a sweep reports no floor).
+/// (`Simulation::bound_force_floor`: a sweep reports no floor) and the coupling iteration
+/// converged by the contact laws' residual (`Simulation::accept_by_law_residual`).
 pub fn passage_simulation(
     model: &InteractionModel,
     train: usize,
@@ -236,6 +237,7 @@ pub fn passage_simulation(
     };
     let mut sim = Simulation::with_vehicles(scenario, vehicles.layouts.clone())?;
     sim.bound_force_floor(true);
+    sim.accept_by_law_residual(true);
     Ok(sim)
 }
 

@@ -402,6 +402,10 @@ impl Simulation {
             force_floor: 0.0,
             floor_bound: false,
             floor_bounded: 0,
+            law: super::law_residual::LawResidual {
+                force: vec![0.0; nw],
+                ..Default::default()
+            },
         };
         let mut output_shapes = vec![0.0; m];
         scenario

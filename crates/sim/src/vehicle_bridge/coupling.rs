@@ -87,6 +87,7 @@ impl Simulation {
             }
             // The linearised force at the linearisation point (+ ΔF of the update below).
             w.prev_force[k] = force;
+            w.law.force[k] = force;
             let shapes = &w.shape_at_wheel[k];
             let cols: f64 = w.column_force[k].iter().sum();
             let scale = force / cols;
@@ -137,10 +138,13 @@ impl Simulation {
                 .all(|r| w.res[r.clone()].iter().all(|d| d.is_finite()))
         {
             add_rows(rows, &w.res, &mut w.x);
-            // φ = F + ΔF, the forces the state now carries.
+            // φ = F + ΔF, the forces the state now carries; for a wheel folded into an
+            // articulated rake's kept factorisation (a chord step) the increment its solve
+            // used, `fold_ratio` × ΔF (as `law_residual` records it).
             for (a, &k) in live.iter().enumerate() {
-                w.prev_force[k] += w.df[a];
+                w.prev_force[k] += w.cap.fold_ratio(a) * w.df[a];
             }
+            self.record_linearised(true);
             return points;
         }
         false
@@ -191,7 +195,7 @@ impl Simulation {
             let w = &mut self.work;
             self.a_matrix
                 .solve_abs_bound_at(&mut w.floor_residual, &self.wheel_dof);
-            let bound = self.wheel_floors(s);
+            let bound = self.wheel_floors(s, true);
             if 16.0 * (1.0 + 1e-12) * bound < tol {
                 self.work.floor_bounded += 1;
                 return;
@@ -201,7 +205,7 @@ impl Simulation {
         let w = &mut self.work;
         self.a_matrix
             .solve_abs_at(&mut w.floor_residual, &self.wheel_dof);
-        self.wheel_floors(s);
+        self.wheel_floors(s, false);
     }
 
     /// `e = |A x| + |r| + s |G|` (module `resting`: zero on the held rows) into
@@ -229,8 +233,12 @@ impl Simulation {
 
     /// The live wheels' floors from `|A⁻¹| e` in `work.floor_residual` (at their patterns)
     /// into `work.wheel_floor`, and `work.force_floor`; returns the largest over the live
-    /// wheels (see [`Self::force_floor`]).
-    fn wheel_floors(&mut self, s: f64) -> f64 {
+    /// wheels (see [`Self::force_floor`]). With `bounding` (the bound of
+    /// [`Self::force_floor`]) a compliant wheel's denominator is its compliance alone,
+    /// which bounds it from below (s |vᵀA⁻¹ĝ| ≥ 0; with Hertz contact on the benchmark
+    /// span it is below 1 % of the compliance), so each floor is bounded from above without
+    /// the solve of A⁻¹ĝ; a rigid wheel (compliance 0) takes the quadratic form.
+    fn wheel_floors(&mut self, s: f64, bounding: bool) -> f64 {
         let w = &mut self.work;
         let e = &w.floor_residual;
         let live = &self.resting.live;
@@ -245,15 +253,19 @@ impl Simulation {
                 + w.r_at_wheel[k].abs();
             let pattern = &w.pattern[k];
             let propagated: f64 = pattern.iter().map(|&i| w.v[k][i].abs() * e[i]).sum();
-            let v_ainv_g = w
-                .cap
-                .quadratic_form(&self.a_matrix, k, &w.g_hat[k], &w.v[k], pattern);
             let compliance = if is_rigid(&self.contacts[k]) || w.outputs[k].stiffness <= 0.0 {
                 0.0
             } else {
                 1.0 / w.outputs[k].stiffness
             };
-            let den = compliance + s * v_ainv_g.abs();
+            let den = if bounding && compliance > 0.0 {
+                compliance
+            } else {
+                let v_ainv_g =
+                    w.cap
+                        .quadratic_form(&self.a_matrix, k, &w.g_hat[k], &w.v[k], pattern);
+                compliance + s * v_ainv_g.abs()
+            };
             w.wheel_floor[k] = if den > 0.0 && den.is_finite() {
                 32.0 * f64::EPSILON * (propagated + approach_scale) / den
             } else {
@@ -333,6 +345,7 @@ impl Simulation {
             self.work.x[i] = self.eq.q_pred[i];
         }
         self.rigid_setup().map_err(fatal)?;
+        self.work.law.valid = false;
         // After a start of point contacts the state carries the forces φ (`prev_force`): the
         // first evaluation's change is then |F(δ) − φ|, the residual of the contact laws.
         let started = self.scenario.coupling.solver == CouplingSolver::QuasiNewton
@@ -411,6 +424,20 @@ impl Simulation {
                 }
                 history = [history[1], change];
             }
+            // The laws' residual against the forces the iterate was solved with (opt-in,
+            // module `law_residual`; the floor is this step's from the second iteration on).
+            if !clamped && let Some(rho) = self.law_residual() {
+                let w = &mut self.work;
+                let limit = if it == 1 { tol } else { tol.max(w.force_floor) };
+                if rho <= limit {
+                    w.law.accepted += 1;
+                    change = rho;
+                    converged = true;
+                    break;
+                }
+            }
+            let w = &mut self.work;
+            let live = &self.resting.live;
             for &k in live {
                 w.prev_force[k] = w.outputs[k].force;
             }
@@ -514,6 +541,11 @@ impl Simulation {
                     fatal: None,
                 });
             }
+            if solver != CouplingSolver::Picard {
+                self.record_linearised(false);
+            }
+            let w = &mut self.work;
+            let live = &self.resting.live;
             // The held rows of the update are zero (they keep their state).
             let rows = &self.resting.live_rows;
             add_rows(rows, &w.res, &mut w.x);

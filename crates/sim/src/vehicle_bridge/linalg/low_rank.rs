@@ -57,6 +57,9 @@ pub struct CapacitanceWork {
     /// Per position in `active`: the wheel is folded into its block's band ([`contact_update`],
     /// "Folding").
     folded: Vec<bool>,
+    /// Per position in `active`, of a folded wheel: its block and its index in the block's
+    /// `fold_add` (and `fold_key`).
+    fold_slot: Vec<(usize, usize)>,
     /// Per dense block of A: the diagonal additions of its folded wheels (block position,
     /// value), whether it has any, and the factorisation of the block with them.
     fold_add: Vec<Vec<(usize, f64)>>,

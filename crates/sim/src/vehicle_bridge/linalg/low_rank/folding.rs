@@ -53,6 +53,8 @@ impl CapacitanceWork {
         }
         self.folded.clear();
         self.folded.resize(active.len(), false);
+        self.fold_slot.clear();
+        self.fold_slot.resize(active.len(), (0, 0));
         let mut any = false;
         for (c, &wheel) in active.iter().enumerate() {
             let &[i] = pattern[wheel].as_ref() else {
@@ -63,6 +65,7 @@ impl CapacitanceWork {
             };
             if compliance[c] > 0.0 {
                 let value = s * g_hat[wheel].as_ref()[i] * v[wheel].as_ref()[i] / compliance[c];
+                self.fold_slot[c] = (d, self.fold_add[d].len());
                 self.fold_add[d].push((r, value));
                 self.fold_used[d] = true;
                 self.folded[c] = true;
@@ -265,6 +268,22 @@ impl CapacitanceWork {
 }
 
 /// Whether `value` is within `tolerance` (relative) of the value with bits `bits`.
+impl CapacitanceWork {
+    /// For the wheel at position `c` of the last update's `active`: the ratio of the diagonal
+    /// addition its block was factorised with to its own, s g v / compliance (1 unless the
+    /// wheel was folded into a factorisation kept within the fold tolerance). The state of
+    /// that update holds the step equation with the folded wheel's force increment
+    /// `ratio × df[c]` (the chord's stiffness), not `df[c]` (its own tangent's).
+    pub fn fold_ratio(&self, c: usize) -> f64 {
+        if !self.folded.get(c).copied().unwrap_or(false) {
+            return 1.0;
+        }
+        let (d, at) = self.fold_slot[c];
+        let used = f64::from_bits(self.fold_key[d].1[at].1);
+        used / self.fold_add[d][at].1
+    }
+}
+
 fn within(value: f64, bits: u64, tolerance: f64) -> bool {
     let stored = f64::from_bits(bits);
     tolerance > 0.0 && (value - stored).abs() <= tolerance * stored.abs()
