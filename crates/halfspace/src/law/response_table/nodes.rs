@@ -8,8 +8,7 @@
 //! not rayon: the table is built inside a law's evaluation, within rayon's parallel pass over
 //! the wheels, where a nested rayon job could run another wheel that waits for this very
 //! table). The split is always in two, whatever the number of threads, and each half runs in
-//! a fixed order on its own solver, so the table is the same on any machine; with a single
-//! rayon thread the two halves run in turn on the calling thread (no extra thread).
+//! a fixed order on its own solver, so the table is the same on any machine.
 
 use crate::error::ContactError;
 use crate::grid::Grid;
@@ -143,13 +142,6 @@ pub(super) fn solve_in_two(
         .map_or(jobs.len(), |i| i + 1);
     let (first, second) = jobs.split_at(half);
     let [w0, w1] = workers;
-    // One thread allowed (rayon's pool, e.g. RAYON_NUM_THREADS=1): the two halves in turn on
-    // this thread, the same solvers in the same order, so the same table bit for bit.
-    if rayon::current_num_threads() <= 1 {
-        let mut solved = solve_half(w0, base_gap, first)?;
-        solved.extend(solve_half(w1, base_gap, second)?);
-        return Ok(solved);
-    }
     let (a, b) = std::thread::scope(|s| {
         let other = s.spawn(|| solve_half(w1, base_gap, second));
         let mine = solve_half(w0, base_gap, first);
