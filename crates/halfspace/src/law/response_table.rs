@@ -4,9 +4,8 @@
 //! Without column corrections (a wheel on a flat, rigid, smooth track) the undeformed gap of
 //! a [`BemLaw`](super::BemLaw) is its base gap h₀ minus the approach δ only, so its force is a
 //! function F(δ) of one variable, the same for every law with the same grid, material and
-//! base gap. The table holds exact solves at nodes δ_0 < δ_1 < … (the dense factor's
-//! active-set solve, exact to round-off, or NormCG to [`NODE_TOL`] where that fails; on two
-//! threads, module `nodes`) and answers between two nodes by the chord
+//! base gap. The table holds exact solves (NormCG to [`NODE_TOL`]) at nodes δ_0 < δ_1 < … and
+//! answers between two nodes by the chord
 //!
 //! ```text
 //! F(δ) ≈ F_i + s_i (δ − δ_i),   s_i = (F_{i+1} − F_i)/(δ_{i+1} − δ_i),
@@ -38,10 +37,7 @@ use std::sync::OnceLock;
 use crate::error::ContactError;
 use crate::grid::Grid;
 use crate::material::Material;
-use crate::normcg::{NormalLoad, SolverOptions};
-
-mod nodes;
-use nodes::{Job, NodeSolver};
+use crate::normcg::{NormalLoad, NormalSolver, SolverOptions};
 
 /// NormCG tolerance of the table's node solves (‖Δp‖_rms/‖p‖_rms), far below any useful
 /// `reuse_tol`.
@@ -113,6 +109,44 @@ struct Solved {
     pressure: Vec<f64>,
 }
 
+fn solve_node(
+    solver: &mut NormalSolver,
+    base_gap: &[f64],
+    delta: f64,
+    options: &SolverOptions,
+) -> Result<Solved, ContactError> {
+    let s = solver.solve(base_gap, NormalLoad::Approach(delta), options)?;
+    let grid = *solver.grid();
+    let (nx, area) = (grid.nx, grid.element_area());
+    let mut column_force = vec![0.0; nx];
+    for (k, p) in s.pressure.iter().enumerate() {
+        column_force[k % nx] += p * area;
+    }
+    let work: f64 = s
+        .pressure
+        .iter()
+        .zip(&s.displacement)
+        .map(|(p, u)| p * u)
+        .sum();
+    let patch = if s.elements_in_contact > 0 {
+        let (a, b) = s.patch_half_widths();
+        (2.0 * a, 2.0 * b)
+    } else {
+        (0.0, 0.0)
+    };
+    Ok(Solved {
+        node: Node {
+            delta,
+            force: s.normal_force,
+            energy: 0.5 * area * work,
+            max_pressure: s.max_pressure,
+            patch,
+        },
+        column_force,
+        pressure: s.pressure,
+    })
+}
+
 /// The relative bound of interval i of the chords `slope` (module documentation): a b h/(a+b)
 /// over the lower node force, infinite at the ends, below `min_force` or where the chords are
 /// not convex beyond round-off.
@@ -145,28 +179,23 @@ impl ResponseTable {
     ) -> Result<Self, ContactError> {
         crate::error::positive("max_force", max_force)?;
         crate::error::positive("reuse_tol", tol)?;
+        let mut solver = NormalSolver::new(grid, material)?;
         let options = SolverOptions {
             tol: NODE_TOL,
             max_iter: 5000,
             sensitivity: false,
             ..SolverOptions::default()
         };
-        let mut workers = [
-            NodeSolver::new(grid, material, options)?,
-            NodeSolver::new(grid, material, options)?,
-        ];
         let h_min = base_gap.iter().copied().fold(f64::INFINITY, f64::min);
         let min_force = MIN_FORCE_FRACTION * max_force;
-        let d_hi = workers[0]
-            .solver
+        let d_hi = solver
             .solve(
                 base_gap,
                 NormalLoad::Force(MAX_FORCE_FACTOR * max_force),
                 &options,
             )?
             .approach;
-        let d_lo = workers[0]
-            .solver
+        let d_lo = solver
             .solve(base_gap, NormalLoad::Force(min_force), &options)?
             .approach;
         // A priori nodes, geometric in t = δ − h_min (about one set change per interval at
@@ -182,15 +211,15 @@ impl ResponseTable {
         }
         deltas.push(h_min + t_hi);
         deltas.push(h_min + t_hi * ratio);
-        // In increasing δ, each node started from the previous one of its half (the
-        // factor's set grows by appends); the two halves on two threads.
-        let jobs: Vec<Job> = deltas.iter().map(|&d| (d, None)).collect();
-        let mut solved = nodes::solve_in_two(&mut workers, base_gap, h_min, jobs)?;
+        let mut solved = Vec::with_capacity(deltas.len());
+        for &d in &deltas {
+            solved.push(solve_node(&mut solver, base_gap, d, &options)?);
+        }
         let mut solves = solved.len() + 2;
         let mut estimate = Vec::new();
-        for pass in 0..MAX_PASSES {
+        for _ in 0..MAX_PASSES {
             estimate = Self::bounds(&solved, min_force);
-            let mut failing: Vec<usize> = (0..estimate.len())
+            let failing: Vec<usize> = (0..estimate.len())
                 .filter(|&i| {
                     estimate[i] > tol && solved[i].node.force >= min_force && i + 2 < solved.len()
                 })
@@ -198,31 +227,21 @@ impl ResponseTable {
             if failing.is_empty() || solved.len() + failing.len() > MAX_NODES {
                 break;
             }
-            // In increasing δ, then decreasing in the next pass: each half's factor grows by
-            // appends within one pass and shrinks by deleting its last rows (the outermost
-            // elements, appended last) within the next, instead of starting over.
-            if pass % 2 == 1 {
-                failing.reverse();
+            let mut start = vec![0.0; grid.len()];
+            for &i in &failing {
+                let d = Self::split_point(&solved, i);
+                // Start from the chord's pressure (exact when the interval holds no set
+                // change).
+                let (lo, hi) = (&solved[i], &solved[i + 1]);
+                let th = (d - lo.node.delta) / (hi.node.delta - lo.node.delta);
+                for ((s, a), b) in start.iter_mut().zip(&lo.pressure).zip(&hi.pressure) {
+                    *s = a + th * (b - a);
+                }
+                solver.set_initial_pressure(&start)?;
+                let node = solve_node(&mut solver, base_gap, d, &options)?;
+                solved.push(node);
+                solves += 1;
             }
-            let jobs: Vec<Job> = failing
-                .iter()
-                .map(|&i| {
-                    let d = Self::split_point(&solved, i);
-                    // Start from the chord's pressure (exact when the interval holds no set
-                    // change; its set is the lower node's).
-                    let (lo, hi) = (&solved[i], &solved[i + 1]);
-                    let th = (d - lo.node.delta) / (hi.node.delta - lo.node.delta);
-                    let start = lo
-                        .pressure
-                        .iter()
-                        .zip(&hi.pressure)
-                        .map(|(a, b)| a + th * (b - a))
-                        .collect();
-                    (d, Some(start))
-                })
-                .collect();
-            solves += jobs.len();
-            solved.extend(nodes::solve_in_two(&mut workers, base_gap, h_min, jobs)?);
             solved.sort_by(|a, b| a.node.delta.total_cmp(&b.node.delta));
         }
         if estimate.len() + 1 != solved.len() {

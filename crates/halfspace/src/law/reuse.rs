@@ -124,7 +124,16 @@ impl Responses {
         unit[centre] = 1.0;
         let mut u = vec![0.0; n];
         solver.displacement(&unit, &mut u)?;
-        let factor = grid_factor(solver)?;
+        let factor = if n <= MAX_FACTOR_GRID {
+            // K(dx, dy) = the displacement of a unit pressure on element 0 at offset (dx, dy).
+            let mut unit = vec![0.0; n];
+            unit[0] = 1.0;
+            let mut kernel = vec![0.0; n];
+            solver.displacement(&unit, &mut kernel)?;
+            Some(SetFactor::new(kernel, grid.nx))
+        } else {
+            None
+        };
         Ok(Responses {
             shapes,
             column_shapes,
@@ -138,22 +147,6 @@ impl Responses {
             set_work: SetSolveWork::default(),
         })
     }
-}
-
-/// An empty dense factor for the grid of `solver` when it has at most [`MAX_FACTOR_GRID`]
-/// elements (`None` above), with its kernel table K(dx, dy): the displacement of a unit
-/// pressure on element 0 at offset (dx, dy), one convolution.
-pub(super) fn grid_factor(solver: &mut NormalSolver) -> Result<Option<SetFactor>, ContactError> {
-    let grid = *solver.grid();
-    let n = grid.len();
-    if n > MAX_FACTOR_GRID {
-        return Ok(None);
-    }
-    let mut unit = vec![0.0; n];
-    unit[0] = 1.0;
-    let mut kernel = vec![0.0; n];
-    solver.displacement(&unit, &mut kernel)?;
-    Ok(Some(SetFactor::new(kernel, grid.nx)))
 }
 
 impl Responses {

@@ -155,18 +155,9 @@ impl Simulation {
                 .enumerate()
                 .filter(|(k, _)| !held[*k])
                 .collect();
-            // The first error by wheel index, whatever the thread count. One wheel per task:
-            // the wheels' costs differ by orders of magnitude (a table answer against a set
-            // change on the span) and the expensive ones are neighbours (the cars on the
-            // span), so rayon's default chunks of a quarter of the wheels balance worse
-            // (issue #14's train: 2-thread time of the law passes modelled from each wheel's
-            // CPU time 0.866 s in such chunks, 0.843 s one wheel per task, 0.762 s at best;
-            // docs/vehicle_bridge.md).
-            let results: Vec<Result<(), VehicleBridgeError>> = items
-                .into_par_iter()
-                .with_max_len(1)
-                .map(evaluate)
-                .collect();
+            // The first error by wheel index, whatever the thread count.
+            let results: Vec<Result<(), VehicleBridgeError>> =
+                items.into_par_iter().map(evaluate).collect();
             results.into_iter().collect::<Result<(), _>>()?;
         } else {
             // The wheels taking part, in order (the first error by wheel index).
