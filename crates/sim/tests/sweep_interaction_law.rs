@@ -169,10 +169,15 @@ fn law_residual_acceptance_keeps_whole_passages() {
             fast.losses, reference.losses,
             "{train} {speed}: contact losses"
         );
-        // The test serves most steps without contact losses, about half with them.
+        // Since the start linearised at the predicted approach (2026-11-28) most steps
+        // converge at the first evaluation, before the law-residual test is reached; the test
+        // then only serves the later iterations (steps with contact losses and landings), and
+        // it never makes the passage take more iterations than the default's.
         assert!(
-            fast.accepted as f64 > 0.3 * fast.steps as f64,
-            "{train} at {speed} m/s: {} of {} steps",
+            fast.iterations <= reference.iterations,
+            "{train} at {speed} m/s: {} iterations with the law residual, {} without ({} of {} steps accepted by it)",
+            fast.iterations,
+            reference.iterations,
             fast.accepted,
             fast.steps
         );
