@@ -1,47 +1,14 @@
 //! The steppers preallocate their workspaces: stepping a linear problem allocates nothing.
 //! Checked with a counting global allocator that counts the allocations of the test's own
 //! thread only: the harness's main thread allocates at random moments (it once made this test
-//! fail on a machine under load 12 when all threads were counted), as in `ode_alloc.rs`.
+//! fail on a machine under load 12 when all threads were counted; `alloc_support`).
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
+mod alloc_support;
+
+use alloc_support::{CountingAllocator, allocations};
 
 use faer::Mat;
 use integrate::structural::{LinearStructure, StructuralMethod, StructuralStepper};
-
-struct CountingAllocator;
-
-thread_local! {
-    /// Allocations made by the current thread (const-initialised: no allocation on access).
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-fn count_allocation() {
-    // `try_with`: the thread-local may already be destroyed while a thread exits.
-    let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-}
-
-fn allocations() -> usize {
-    ALLOCATIONS.with(Cell::get)
-}
-
-// SAFETY: forwards every call to the system allocator unchanged; only counts.
-unsafe impl GlobalAlloc for CountingAllocator {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        count_allocation();
-        // SAFETY: same contract as the caller's.
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        // SAFETY: same contract as the caller's.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        count_allocation();
-        // SAFETY: same contract as the caller's.
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
 
 #[global_allocator]
 static GLOBAL: CountingAllocator = CountingAllocator;
