@@ -1,7 +1,7 @@
 //! The steppers preallocate their workspaces: stepping a linear problem allocates nothing.
 //! Checked with a counting global allocator that counts the allocations of the test's own
-//! thread only: the harness's main thread allocates at random moments (it once made this test
-//! fail on a machine under load 12 when all threads were counted; `alloc_support`).
+//! thread only: the harness's main thread allocates at random moments (the likely cause of
+//! the one failure seen, under load 12, when every thread was counted; `alloc_support`).
 
 mod alloc_support;
 

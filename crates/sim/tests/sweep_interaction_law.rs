@@ -172,7 +172,16 @@ fn law_residual_acceptance_keeps_whole_passages() {
         // Since the start linearised at the predicted approach (2026-11-28) most steps
         // converge at the first evaluation, before the law-residual test is reached; the test
         // then only serves the later iterations (steps with contact losses and landings), and
-        // it never makes the passage take more iterations than the default's.
+        // it never makes the passage take more iterations than the default's, and where
+        // wheels lose contact (the resonant passages) it must save some (measured 2.9–3.0 %).
+        if reference.losses > 0 {
+            assert!(
+                fast.iterations < reference.iterations && fast.accepted > 0,
+                "{train} at {speed} m/s with contact losses: the law residual saved nothing ({} vs {} iterations)",
+                fast.iterations,
+                reference.iterations
+            );
+        }
         assert!(
             fast.iterations <= reference.iterations,
             "{train} at {speed} m/s: {} iterations with the law residual, {} without ({} of {} steps accepted by it)",

@@ -1,7 +1,7 @@
 //! A counting global allocator for the no-allocation tests (`ode_alloc.rs`,
 //! `structural_alloc.rs`): it counts the allocations of the calling thread only, since the test
-//! harness's own threads allocate at random moments (counting every thread once made a test
-//! fail under load). Each test binary installs it with
+//! harness's own threads allocate at random moments (the likely cause of a test's one failure
+//! under load when every thread was counted). Each test binary installs it with
 //! `#[global_allocator] static GLOBAL: CountingAllocator = CountingAllocator;`.
 
 use std::alloc::{GlobalAlloc, Layout, System};

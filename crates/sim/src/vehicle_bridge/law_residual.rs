@@ -27,6 +27,13 @@
 //! the last correction, i.e. within the coupling tolerance (`coupling.tol` × the largest
 //! static wheel load).
 //!
+//! Since the extrapolated start records its forces φ in `prev_force` as well (the default
+//! iteration's first change test |F(δ) − φ|, 2026-11-28), this test adds nothing at the first
+//! evaluation after such a start (`law.force` equals `prev_force` there and the default test,
+//! with max(tol, floor), runs first); it pays at the later iterations, i.e. in steps where
+//! wheels lose or regain contact (about 3 % of the iterations of resonant HSLM passages,
+//! `sweep_interaction_law.rs`).
+//!
 //! The test applies only when every wheel taking part is a compliant point contact (no rigid
 //! constraint) and each is in contact both evaluated and linearised, or out of contact in
 //! both (a wheel in the air has no tangent and stays out of the update, its force zero): no
